@@ -1,0 +1,70 @@
+#include "bench_args.h"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace fesd_bench {
+
+Arguments::Arguments(int argc, char** argv, int first) {
+  for (int i = first; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg.rfind("--", 0) != 0) throw std::invalid_argument("unexpected argument '" + arg + "'");
+    const size_t eq = arg.find('=');
+    const std::string name = arg.substr(2, eq == std::string::npos ? std::string::npos : eq - 2);
+    values_[name] = eq == std::string::npos ? "true" : arg.substr(eq + 1);
+  }
+}
+
+std::string Arguments::text(const std::string& name, const std::string& fallback) const {
+  used_[name] = true;
+  const auto it = values_.find(name);
+  return it == values_.end() ? fallback : it->second;
+}
+
+double Arguments::number(const std::string& name, double fallback) const {
+  const auto it = values_.find(name);
+  used_[name] = true;
+  return it == values_.end() ? fallback : std::stod(it->second);
+}
+
+int Arguments::integer(const std::string& name, int fallback) const {
+  const auto it = values_.find(name);
+  used_[name] = true;
+  return it == values_.end() ? fallback : std::stoi(it->second);
+}
+
+bool Arguments::flag(const std::string& name, bool fallback) const {
+  const std::string value = text(name, fallback ? "true" : "false");
+  if (value == "true" || value == "1" || value == "on") return true;
+  if (value == "false" || value == "0" || value == "off") return false;
+  throw std::invalid_argument("--" + name + " takes true/false, got '" + value + "'");
+}
+
+std::vector<std::string> Arguments::texts(const std::string& name,
+                                          const std::vector<std::string>& fallback) const {
+  const auto it = values_.find(name);
+  used_[name] = true;
+  if (it == values_.end()) return fallback;
+  std::vector<std::string> list;
+  std::stringstream stream(it->second);
+  std::string item;
+  while (std::getline(stream, item, ',')) list.push_back(item);
+  return list;
+}
+
+std::vector<int> Arguments::integers(const std::string& name,
+                                     const std::vector<int>& fallback) const {
+  std::vector<std::string> words;
+  for (int value : fallback) words.push_back(std::to_string(value));
+  std::vector<int> list;
+  for (const std::string& word : texts(name, words)) list.push_back(std::stoi(word));
+  return list;
+}
+
+void Arguments::rejectUnused() const {
+  for (const auto& [name, value] : values_) {
+    if (!used_.count(name)) throw std::invalid_argument("unknown option --" + name);
+  }
+}
+
+}  // namespace fesd_bench

@@ -1,0 +1,30 @@
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace fesd_bench {
+
+/// Command-line options of the form --name=value (or --flag for "true").
+class Arguments {
+ public:
+  Arguments(int argc, char** argv, int first);
+  std::string text(const std::string& name, const std::string& fallback) const;
+  double number(const std::string& name, double fallback) const;
+  int integer(const std::string& name, int fallback) const;
+  bool flag(const std::string& name, bool fallback) const;
+  /// A comma-separated list of integers, e.g. --stages=1,2,3.
+  std::vector<int> integers(const std::string& name, const std::vector<int>& fallback) const;
+  /// A comma-separated list of words, e.g. --methods=fesd,standard.
+  std::vector<std::string> texts(const std::string& name,
+                                 const std::vector<std::string>& fallback) const;
+  /// Throws if an option was given that no accessor asked for (catches typos).
+  void rejectUnused() const;
+
+ private:
+  std::map<std::string, std::string> values_;
+  mutable std::map<std::string, bool> used_;
+};
+
+}  // namespace fesd_bench

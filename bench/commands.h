@@ -1,0 +1,11 @@
+#pragma once
+
+#include "bench_args.h"
+
+namespace fesd_bench {
+
+/// Each command prints its results to stdout and returns the process exit code.
+int orderPds(const Arguments& args);
+int derivatives(const Arguments& args);
+
+}  // namespace fesd_bench

@@ -1,0 +1,37 @@
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "fesd_trajopt/core/smooth_function.h"
+
+namespace fesd {
+
+/// The dynamic complementarity system (DCS) of a projected dynamical system
+///   xdot = f(x, u) + grad c(x) lambda,   0 <= c(x)  _|_  lambda >= 0,
+/// given by two smooth functions:
+///  - the velocity  v(x, u, lambda) = f(x, u) + grad c(x) lambda  on z = (x, u, lambda),
+///  - the constraints  c(x)  on x.
+/// The discretisation only ever evaluates these two, so a model may be analytic or built by
+/// automatic differentiation (see autodiff_model.h).
+class DcsModel {
+ public:
+  DcsModel(int state_size, int control_size, int constraint_size,
+           std::shared_ptr<const SmoothFunction> velocity,
+           std::shared_ptr<const SmoothFunction> constraints, std::string name);
+
+  int stateSize() const { return state_size_; }
+  int controlSize() const { return control_size_; }
+  int constraintSize() const { return constraint_size_; }
+  const std::string& name() const { return name_; }
+
+  const std::shared_ptr<const SmoothFunction>& velocity() const { return velocity_; }
+  const std::shared_ptr<const SmoothFunction>& constraints() const { return constraints_; }
+
+ private:
+  int state_size_, control_size_, constraint_size_;
+  std::shared_ptr<const SmoothFunction> velocity_, constraints_;
+  std::string name_;
+};
+
+}  // namespace fesd

@@ -1,0 +1,120 @@
+#pragma once
+
+#include <vector>
+
+#include "fesd_trajopt/core/butcher_tableau.h"
+#include "fesd_trajopt/core/nlp_assembly.h"
+#include "fesd_trajopt/core/ocp_definition.h"
+#include "fesd_trajopt/core/trajectory.h"
+
+namespace fesd {
+
+/// The FESD (or, with switch detection off, the standard fixed-step) discretisation of an
+/// OcpDefinition as a relaxable MPCC (seed 000, Sec. III):
+///  - Runge-Kutta equations of every finite element (eq. 6a),
+///  - lifted constraint values s = c(x) at every stage point and s >= 0, lambda >= 0,
+///  - complementarity: per stage (standard) or cross-complementarity (eq. 8) in the chosen form,
+///  - step equilibration (Sec. III-C) with nu = (sum_c B v sum_c F) ^ (sum_l B v sum_l F), max
+///    through the KKT conditions of its LP, OR over the constraints, and the big-M bound,
+///  - sum of steps = interval length and step bounds,
+///  - costs by the RK quadrature, control/state bounds, path and terminal constraints.
+/// The start state and the controls are NLP variables, fixed or bounded through their bounds,
+/// so one structure serves optimal control and simulation alike.
+class FesdDiscretization {
+ public:
+  FesdDiscretization(OcpDefinition ocp, DiscretizationOptions options);
+  // The NLP's active-set hook refers to this object: it stays where it was built.
+  FesdDiscretization(const FesdDiscretization&) = delete;
+  FesdDiscretization& operator=(const FesdDiscretization&) = delete;
+
+  NlpAssembly& nlp() { return nlp_; }
+  const NlpAssembly& nlp() const { return nlp_; }
+  const OcpDefinition& ocp() const { return ocp_; }
+  const DiscretizationOptions& options() const { return options_; }
+  const ButcherTableau& tableau() const { return tableau_; }
+  /// True when element lengths are free (FESD on and the model has constraints).
+  bool stepsAreFree() const { return steps_free_; }
+  int numElements() const { return static_cast<int>(stages_.size()); }  ///< all intervals
+  double nominalStep() const { return nominal_step_; }
+
+  /// Fixes the start state (bounds and guess) and updates its lifted constraint values.
+  void setInitialState(const Eigen::VectorXd& x0);
+  /// Sets lambda just before the start (default 0), e.g. to the end of a previous simulation step.
+  void setInitialMultipliers(const Eigen::VectorXd& lambda0);
+  /// Fixes the control of interval k to u (simulation).
+  void fixControl(int interval, const Eigen::VectorXd& u);
+  /// Frees the control of interval k within the OCP's control bounds.
+  void freeControl(int interval);
+
+  /// A guess with every state at the start state, lambda = 0, nominal steps and the given
+  /// controls (clipped to their bounds; empty means 0); auxiliaries made consistent.
+  std::vector<double> constantGuess(const std::vector<Eigen::VectorXd>& controls = {}) const;
+  /// The solution of a previous, equally structured problem moved to the current start state:
+  /// every stage state shifted by (start - old start), c(x) re-evaluated, lambda and steps kept.
+  /// A simulation step's guess from the step before (smooth motion repeats its increments).
+  std::vector<double> translatedGuess(const std::vector<double>& previous_solution) const;
+  /// Sets the step-equilibration auxiliaries (pi, max, nu, OR) of x consistently with its
+  /// s and lambda values, so a guess starts (nearly) feasible for them.
+  void completeAuxiliaries(std::vector<double>& x) const;
+
+  /// Reads the trajectory (times, states, stage values, controls, switches) from a solution;
+  /// times start at start_time.
+  Trajectory extract(const double* x, double start_time = 0.0,
+                     double activity_tolerance = kDefaultActivityTolerance) const;
+
+  int controlIndex(int interval) const { return controls_[interval]; }
+  int stepIndex(int element) const { return steps_[element]; }
+  int stateIndex(int element, int stage) const { return stages_[element][stage].x; }
+  int startStateIndex() const { return start_.x; }
+
+ private:
+  struct StagePoint {
+    int x = -1, s = -1, lambda = -1;  ///< first indices of the point's x, s = c(x), lambda
+  };
+  /// The backward (element n-1) and forward (element n) sums of one constraint at a boundary.
+  struct BoundarySums {
+    LinearExpression lambda_backward, lambda_forward, c_backward, c_forward;
+  };
+  struct EquilibrationAuxiliaries {
+    int previous_element, element;
+    std::vector<BoundarySums> sums;                           ///< per constraint
+    std::vector<int> pi_lambda, pi_c, maximum, gap, kkt, nu;  ///< per constraint (gap, kkt: 2)
+    int any_switch;                                           ///< OR of nu over the constraints
+    int equal_steps_row;  ///< h_{n-1} - h_n, free except when polishing a boundary without switch
+  };
+
+  void buildVariables();
+  void buildDynamics();
+  void buildComplementarity();
+  void buildStepEquilibration();
+  void buildCostsAndConstraints();
+  /// The polishing counterpart of step equilibration (NlpAssembly's active-set hook): with the
+  /// complementarity sides fixed, nu > 0 exactly when some c and some lambda in a boundary's
+  /// sums are nonzero (Table I). The auxiliaries' inequalities would pin them without interior,
+  /// so they are frozen and replaced by h_{n-1} = h_n at the boundaries without a switch.
+  void equilibrateActiveSet(const double* x);
+  void addLifting(const StagePoint& point);
+  LinearExpression rangeExpression(int first, int count, int stride) const;
+  const StagePoint& previousPoint(int element) const;
+  int controlOf(int element) const { return controls_[element / options_.num_elements]; }
+  std::vector<int> velocityInputs(int element, int stage) const;
+  std::vector<int> stateControlInputs(const StagePoint& point, int element) const;
+  double clippedControl(int interval, int component, double value) const;
+
+  OcpDefinition ocp_;
+  DiscretizationOptions options_;
+  ButcherTableau tableau_;
+  int nx_, nu_, nc_;
+  double nominal_step_;
+  bool steps_free_;
+  NlpAssembly nlp_;
+  StagePoint start_;
+  std::vector<int> controls_;                    ///< per interval
+  std::vector<int> steps_;                       ///< per element (global)
+  std::vector<std::vector<StagePoint>> stages_;  ///< per element, per stage
+  std::vector<EquilibrationAuxiliaries> equilibration_;
+  int auxiliary_variables_begin_ = 0, auxiliary_variables_end_ = 0;  ///< [begin, end)
+  int auxiliary_rows_begin_ = 0, auxiliary_rows_end_ = 0;
+};
+
+}  // namespace fesd

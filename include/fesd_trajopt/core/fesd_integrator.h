@@ -1,0 +1,67 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fesd_trajopt/core/fesd_discretization.h"
+#include "fesd_trajopt/core/mpcc_solver.h"
+
+namespace fesd {
+
+inline HomotopyOptions steepHomotopy() {
+  HomotopyOptions options;
+  options.sigma_reduction = 0.01;
+  return options;
+}
+
+/// The retry: a gentler homotopy without the step regulariser, i.e. another path.
+inline HomotopyOptions retryHomotopy() {
+  HomotopyOptions options;
+  options.vanishing_terms_weight = 0.0;
+  return options;
+}
+
+struct SimulationOptions {
+  DiscretizationOptions discretization;
+  /// Simulation steps are small MPCCs solved one after another; a steeper homotopy
+  /// (kappa = 0.01) needs about a quarter fewer Ipopt iterations on them than the OCP default.
+  HomotopyOptions homotopy = steepHomotopy();
+  /// A step whose homotopy fails is solved once more along another path: kappa = 0.1 and no
+  /// step regulariser. Seen needed where a release falls just before a step's end: the
+  /// relaxed solutions can settle with the release inside the last, tiny element, from where
+  /// no tighter relaxation is feasible.
+  HomotopyOptions retry_homotopy = retryHomotopy();
+  double activity_tolerance = kDefaultActivityTolerance;
+  /// Start each step from the previous step's solution translated to the new start state
+  /// (otherwise from a constant guess).
+  bool reuse_previous_step = true;
+};
+
+struct SimulationResult {
+  SolveStatus status = SolveStatus::kSolverError;
+  std::string message;
+  Trajectory trajectory;  ///< element boundaries and stage values of all steps, with switches
+  MpccReport totals;      ///< summed iterations and times, worst complementarity residual
+  std::vector<std::vector<HomotopyStep>> step_histories;  ///< each step's homotopy
+  int completed_steps = 0;
+  int retried_steps = 0;  ///< steps that needed the retry homotopy
+};
+
+/// Simulates a DCS with FESD: num_steps steps of length horizon / num_steps, each with
+/// num_elements finite elements, solved one after another as small MPCCs.
+class FesdIntegrator {
+ public:
+  FesdIntegrator(std::shared_ptr<const DcsModel> model, SimulationOptions options);
+
+  /// `controls` holds one control per step, a single control for all steps, or nothing when
+  /// the model has no controls. Stops at the first step that does not converge.
+  SimulationResult simulate(const Eigen::VectorXd& x0, double horizon, int num_steps,
+                            const std::vector<Eigen::VectorXd>& controls = {});
+
+ private:
+  std::shared_ptr<const DcsModel> model_;
+  SimulationOptions options_;
+};
+
+}  // namespace fesd

@@ -1,0 +1,126 @@
+#pragma once
+
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fesd_trajopt/core/nlp_problem.h"
+
+namespace fesd {
+
+/// Options passed to Ipopt for every relaxed NLP.
+struct IpoptSettings {
+  double tolerance = 1e-10;
+  double acceptable_tolerance = 1e-8;
+  int max_iterations = 500;  ///< per relaxed NLP
+  int print_level = 0;
+  /// "monotone" needs fewer linear solves per iteration than "adaptive" (whose quality function
+  /// solves several systems), which matters because every MUMPS call has a fixed cost.
+  std::string mu_strategy = "monotone";
+  std::string linear_solver = "mumps";
+  /// A warm-started homotopy step starts at the previous solution with its multipliers, pushed
+  /// off the bounds by only this much, and with Ipopt's mu_init = warm_start_mu_factor * sigma:
+  /// a barrier parameter consistent with that point, so Ipopt does not re-centre far away.
+  double warm_start_mu_factor = 1e-6;
+  double warm_start_bound_push = 1e-9;
+  /// Any further Ipopt option by name; the value's type (integer, number, text) is inferred.
+  std::map<std::string, std::string> extra_options;
+};
+
+/// The Scholtes homotopy: solve the NLP with 0 <= a, 0 <= b, a*b <= sigma for
+/// sigma = sigma0, kappa*sigma0, ... until the complementarity residual is below tolerance.
+struct HomotopyOptions {
+  double sigma_initial = 1.0;
+  double sigma_reduction = 0.1;  ///< kappa
+  double complementarity_tolerance = 1e-9;
+  int max_steps = 30;
+  /// The homotopy stops before sigma falls below this: tighter relaxations are as hard for
+  /// Ipopt (tolerance 1e-10) as the MPCC itself, so further steps cannot help.
+  double minimum_sigma = 1e-13;
+  /// Weight of the objective terms that vanish with sigma (FESD's step regulariser); 0 drops
+  /// them. A different weight gives the homotopy a different path.
+  double vanishing_terms_weight = 1.0;
+  /// A relaxed NLP that ends without converging does not abort the homotopy: the next, tighter
+  /// one starts from its iterate (as the reference implementation does).
+  bool continue_after_failure = true;
+  double wall_time_budget = std::numeric_limits<double>::infinity();  ///< seconds, per solve
+  /// After the homotopy converges, fix the identified active set and solve the resulting smooth
+  /// NLP once more (RelaxedMpcc::fixActiveSet): complementarity then holds exactly instead of
+  /// to O(sigma), which removes the sigma-blur of switch times (release times are only pinned
+  /// to O(sigma / h^2) by a relaxed pair, because c leaves the boundary quadratically) and makes
+  /// equilibrated steps exactly equal. If the polished NLP fails, the most ambiguous pairs are
+  /// flipped one at a time (up to polish_attempts solves); if all fail, the homotopy's point
+  /// is kept.
+  bool polish_active_set = true;
+  int polish_attempts = 3;
+  IpoptSettings ipopt;
+};
+
+enum class SolveStatus {
+  kSuccess,                ///< converged with the complementarity residual below tolerance
+  kMaxIterations,          ///< Ipopt hit its iteration limit in the last relaxed NLP
+  kInfeasible,             ///< Ipopt found the relaxed NLP locally infeasible
+  kTimeout,                ///< the wall-time budget ran out; the best iterate is returned
+  kComplementarityNotMet,  ///< the homotopy ended above the complementarity tolerance
+  kSolverError,            ///< Ipopt failed otherwise (restoration failure, bad values, ...)
+};
+std::string statusName(SolveStatus status);
+
+/// One relaxed NLP of the homotopy.
+struct HomotopyStep {
+  double sigma;  ///< 0 marks the polishing solve
+  int iterations;
+  double complementarity_residual;
+  double objective;
+  std::string ipopt_status;
+  double wall_seconds;
+};
+
+struct MpccReport {
+  SolveStatus status = SolveStatus::kSolverError;
+  std::string message;
+  std::vector<HomotopyStep> history;
+  std::vector<double> solution;  ///< the last accepted iterate
+  double objective = 0.0;
+  double complementarity_residual = 0.0;
+  int iterations = 0;     ///< Ipopt iterations over all homotopy steps
+  bool polished = false;  ///< the solution comes from the active-set polishing solve
+  double wall_seconds = 0.0, cpu_seconds = 0.0;
+  double ipopt_seconds = 0.0;  ///< wall time inside Ipopt itself (solve time minus evaluations)
+  double evaluation_seconds = 0.0;  ///< wall time inside our function evaluations
+
+  bool converged() const { return status == SolveStatus::kSuccess; }
+  void addEffort(const MpccReport& other);   ///< adds another solve's iterations and times
+  void accumulate(const MpccReport& other);  ///< addEffort, and the worse residual
+};
+
+class IpoptSession;
+struct PrimalDualPoint;
+
+/// Solves a RelaxedMpcc by the homotopy, each NLP by Ipopt with exact sparse derivatives,
+/// warm-started from the previous one. A solver keeps one Ipopt application and can be reused
+/// for many problems; it is not thread-safe (use one per thread).
+class MpccSolver {
+ public:
+  explicit MpccSolver(HomotopyOptions options = {});
+  ~MpccSolver();
+  MpccSolver(const MpccSolver&) = delete;
+  MpccSolver& operator=(const MpccSolver&) = delete;
+
+  const HomotopyOptions& options() const { return options_; }
+  /// Solves from the initial guess. With zero complementarity constraints the problem is a
+  /// smooth NLP and is solved once, without homotopy.
+  MpccReport solve(RelaxedMpcc& problem, const std::vector<double>& initial_guess);
+
+ private:
+  /// The polishing stage: keeps `report` as it is unless the polished NLP converges.
+  void polish(RelaxedMpcc& problem, const PrimalDualPoint& converged, double deadline,
+              double last_sigma, MpccReport& report);
+
+  HomotopyOptions options_;
+  std::unique_ptr<IpoptSession> session_;
+};
+
+}  // namespace fesd

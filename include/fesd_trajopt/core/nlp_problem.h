@@ -1,0 +1,55 @@
+#pragma once
+
+#include <vector>
+
+#include "fesd_trajopt/core/smooth_function.h"
+
+namespace fesd {
+
+/// A sparse nonlinear program  min f(x)  s.t.  g_l <= g(x) <= g_u,  x_l <= x <= x_u,
+/// with exact first and second derivatives. Solver-agnostic: the Ipopt adapter reads it.
+class NlpProblem {
+ public:
+  virtual ~NlpProblem() = default;
+
+  virtual int numVariables() const = 0;
+  virtual int numConstraints() const = 0;
+  virtual void getBounds(double* x_lower, double* x_upper, double* g_lower,
+                         double* g_upper) const = 0;
+
+  virtual double objective(const double* x) const = 0;
+  virtual void objectiveGradient(const double* x, double* gradient) const = 0;
+  virtual void constraints(const double* x, double* g) const = 0;
+
+  virtual const SparsityPattern& jacobianPattern() const = 0;
+  virtual void jacobian(const double* x, double* values) const = 0;
+  /// Lower triangle of  objective_factor * Hess f + sum_i multipliers_i * Hess g_i.
+  virtual const SparsityPattern& hessianPattern() const = 0;
+  virtual void hessian(const double* x, double objective_factor, const double* multipliers,
+                       double* values) const = 0;
+};
+
+/// An MPCC relaxed by a parameter sigma >= 0 (sigma = 0 is the MPCC itself).
+class RelaxedMpcc : public NlpProblem {
+ public:
+  virtual void setRelaxation(double sigma) = 0;
+  /// Weight of objective terms that vanish with sigma (regularisers of the relaxed NLPs);
+  /// 0 removes them.
+  virtual void setVanishingTermsWeight(double weight) = 0;
+  virtual int numComplementarities() const = 0;
+  /// Constraint rows of the complementarity products.
+  virtual const std::vector<int>& complementarityRows() const = 0;
+  /// Active-set polishing: fixes, through variable bounds, the side of every complementarity
+  /// pair that is zero at x (the smaller one) and drops the pair, leaving a smooth NLP whose
+  /// solutions satisfy the complementarity exactly. `flip` >= 0 reverses the choice for the
+  /// flip-th most ambiguous pair (largest min/max ratio of its two sides), for a retry after a
+  /// failed attempt. Returns false (and changes nothing) when a zero side is not a sum of
+  /// nonnegative free variables, or when there is no such ambiguous pair to flip.
+  virtual bool fixActiveSet(const double* x, int flip = -1) = 0;
+  /// Undoes fixActiveSet.
+  virtual void releaseActiveSet() = 0;
+  /// Largest violation of the complementarity constraints at x (0 when they hold exactly).
+  virtual double complementarityResidual(const double* x) const = 0;
+};
+
+}  // namespace fesd

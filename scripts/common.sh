@@ -1,0 +1,48 @@
+# Shared by the README's commands: installs what is missing and builds the catkin workspace.
+# Sourced, not executed. The workspace lives beside the clone (<clone>_catkin_ws, outside git),
+# not inside it: rosrun follows symlinks, and src/ links back to the clone.
+set -euo pipefail
+
+# ROS tools are Debian's and need Debian's python3, not one earlier on PATH (e.g. pyenv).
+export PATH="/usr/bin:$PATH"
+REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+WS_DIR="${FESD_WS_DIR:-${REPO_DIR}_catkin_ws}"
+ROS_PYTHON=/usr/bin/python3
+
+DEBIAN_PACKAGES=(
+  build-essential cmake pkg-config
+  catkin libroscpp-dev ros-message-generation librostest-dev python3-rostest python3-roslaunch
+  rosbash libvisualization-msgs-dev libgeometry-msgs-dev liburdfdom-dev rviz
+  coinor-libipopt-dev libeigen3-dev libgtest-dev libsiconos-kernel-dev
+  gnuplot-nox python3-matplotlib xvfb
+)
+
+install_dependencies() {
+  local missing=()
+  for package in "${DEBIAN_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||
+      missing+=("$package")
+  done
+  if ((${#missing[@]})); then
+    echo "== installing: ${missing[*]}"
+    local sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo="sudo"
+    $sudo apt-get update
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"
+  fi
+}
+
+build_workspace() {
+  mkdir -p "$WS_DIR/src"
+  ln -sfn "$REPO_DIR" "$WS_DIR/src/fesd_trajopt"
+  echo "== building in $WS_DIR (Release)"
+  (cd "$WS_DIR" && catkin_make -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE="$ROS_PYTHON" \
+    -DCATKIN_ENABLE_TESTING=ON -j2 "$@")
+}
+
+source_workspace() {
+  set +u
+  # shellcheck disable=SC1091
+  source "$WS_DIR/devel/setup.bash"
+  set -u
+}

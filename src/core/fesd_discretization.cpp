@@ -1,0 +1,542 @@
+#include "fesd_trajopt/core/fesd_discretization.h"
+
+#include "fesd_trajopt/core/quadratic_function.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+namespace fesd {
+namespace {
+
+constexpr double kInf = NlpAssembly::kInfinity;
+
+void requireSize(const Eigen::VectorXd& v, int size, const char* what) {
+  if (v.size() != 0 && v.size() != size) {
+    throw std::invalid_argument(std::string("OcpDefinition: ") + what + " must have size " +
+                                std::to_string(size) + " or be empty");
+  }
+}
+
+void requireFunction(const std::shared_ptr<const SmoothFunction>& f, int inputs, bool scalar,
+                     const char* what) {
+  if (!f) return;
+  if (f->inputSize() != inputs || (scalar && f->outputSize() != 1)) {
+    throw std::invalid_argument(std::string("OcpDefinition: ") + what + " has the wrong size");
+  }
+}
+
+}  // namespace
+
+FesdDiscretization::FesdDiscretization(OcpDefinition ocp, DiscretizationOptions options)
+    : ocp_(std::move(ocp)),
+      options_(options),
+      tableau_(makeTableau(options.family, options.num_stages)) {
+  if (!ocp_.model) throw std::invalid_argument("OcpDefinition: no model");
+  nx_ = ocp_.model->stateSize();
+  nu_ = ocp_.model->controlSize();
+  nc_ = ocp_.model->constraintSize();
+  if (!tableau_.lastStageIsEndPoint()) {
+    throw std::invalid_argument("FESD discretisation: scheme " + tableau_.name() +
+                                " has no stage at the element end (c_ns != 1); use Radau-IIA");
+  }
+  if (options_.num_elements < 1) throw std::invalid_argument("num_elements must be >= 1");
+  if (ocp_.num_intervals < 1) throw std::invalid_argument("num_intervals must be >= 1");
+  if (!(ocp_.horizon > 0.0) || !std::isfinite(ocp_.horizon)) {
+    throw std::invalid_argument("horizon must be positive and finite");
+  }
+  if (!(options_.step_bound >= 0.0 && options_.step_bound <= 1.0)) {
+    throw std::invalid_argument("step_bound (gamma_h) must be in [0, 1]");
+  }
+  if (!(options_.equilibration_big_m > 0.0)) {
+    throw std::invalid_argument("equilibration_big_m must be positive");
+  }
+  if (ocp_.initial_state.size() != nx_) {
+    throw std::invalid_argument("OcpDefinition: initial_state must have size n_x");
+  }
+  requireSize(ocp_.control_lower, nu_, "control_lower");
+  requireSize(ocp_.control_upper, nu_, "control_upper");
+  requireSize(ocp_.state_lower, nx_, "state_lower");
+  requireSize(ocp_.state_upper, nx_, "state_upper");
+  requireFunction(ocp_.lagrange_cost, nx_ + nu_, true, "lagrange_cost");
+  requireFunction(ocp_.mayer_cost, nx_, true, "mayer_cost");
+  requireFunction(ocp_.path_constraints, nx_ + nu_, false, "path_constraints");
+  requireFunction(ocp_.terminal_constraints, nx_, false, "terminal_constraints");
+
+  nominal_step_ = ocp_.horizon / (ocp_.num_intervals * options_.num_elements);
+  // Without constraints nothing can switch: the steps stay fixed and no MPCC machinery is built.
+  steps_free_ = options_.switch_detection && nc_ > 0;
+  buildVariables();
+  buildDynamics();
+  buildComplementarity();
+  buildStepEquilibration();
+  buildCostsAndConstraints();
+  nlp_.finalize();
+}
+
+void FesdDiscretization::buildVariables() {
+  const int ns = tableau_.stages;
+  start_.x = nlp_.addVariables(nx_, 0.0, 0.0);
+  // c(x_start) is data (x_start is fixed): set by setInitialState, without a sign bound, so that
+  // a start a rounding error inside the boundary (the end of a previous step) stays feasible.
+  start_.s = nlp_.addVariables(nc_, 0.0, 0.0);
+  // lambda just before the start (data: 0, or the end of a previous simulation step). It only
+  // enters the step-equilibration sums.
+  start_.lambda = nlp_.addVariables(nc_, 0.0, 0.0);
+  setInitialState(ocp_.initial_state);
+  const double step_lower =
+      steps_free_ ? (1.0 - options_.step_bound) * nominal_step_ : nominal_step_;
+  const double step_upper =
+      steps_free_ ? (1.0 + options_.step_bound) * nominal_step_ : nominal_step_;
+  for (int k = 0; k < ocp_.num_intervals; ++k) {
+    controls_.push_back(nlp_.addVariables(nu_, -kInf, kInf));
+    freeControl(k);
+    for (int n = 0; n < options_.num_elements; ++n) {
+      steps_.push_back(nlp_.addVariables(1, step_lower, step_upper, nominal_step_));
+      std::vector<StagePoint> points(ns);
+      for (StagePoint& point : points) {
+        point.x = nlp_.addVariables(nx_, -kInf, kInf);
+        for (int d = 0; d < nx_; ++d) {
+          nlp_.setVariableBounds(point.x + d, ocp_.state_lower.size() ? ocp_.state_lower(d) : -kInf,
+                                 ocp_.state_upper.size() ? ocp_.state_upper(d) : kInf);
+        }
+        point.s = nlp_.addVariables(nc_, 0.0, kInf);
+        point.lambda = nlp_.addVariables(nc_, 0.0, kInf);
+      }
+      stages_.push_back(points);
+    }
+  }
+}
+
+const FesdDiscretization::StagePoint& FesdDiscretization::previousPoint(int element) const {
+  return element == 0 ? start_ : stages_[element - 1].back();
+}
+
+std::vector<int> FesdDiscretization::velocityInputs(int element, int stage) const {
+  const StagePoint& point = stages_[element][stage];
+  std::vector<int> inputs;
+  for (int d = 0; d < nx_; ++d) inputs.push_back(point.x + d);
+  for (int d = 0; d < nu_; ++d) inputs.push_back(controlOf(element) + d);
+  for (int d = 0; d < nc_; ++d) inputs.push_back(point.lambda + d);
+  return inputs;
+}
+
+std::vector<int> FesdDiscretization::stateControlInputs(const StagePoint& point,
+                                                        int element) const {
+  std::vector<int> inputs;
+  for (int d = 0; d < nx_; ++d) inputs.push_back(point.x + d);
+  for (int d = 0; d < nu_; ++d) inputs.push_back(controlOf(element) + d);
+  return inputs;
+}
+
+void FesdDiscretization::addLifting(const StagePoint& point) {
+  if (nc_ == 0) return;
+  const int row = nlp_.addRows(nc_, 0.0, 0.0);
+  for (int k = 0; k < nc_; ++k) nlp_.addLinear(row + k, point.s + k, 1.0);
+  std::vector<int> inputs;
+  for (int d = 0; d < nx_; ++d) inputs.push_back(point.x + d);
+  nlp_.addFunctionTerm(ocp_.model->constraints(), inputs, -1, {{row, -1.0}});
+}
+
+void FesdDiscretization::buildDynamics() {
+  const int ns = tableau_.stages;
+  for (int e = 0; e < numElements(); ++e) {
+    const StagePoint& previous = previousPoint(e);
+    // x_{n,i} - x_{n,0} - h_n sum_j a_ij v(x_{n,j}, u, lambda_{n,j}) = 0
+    const int first_row = nlp_.addRows(ns * nx_, 0.0, 0.0);
+    for (int i = 0; i < ns; ++i) {
+      for (int d = 0; d < nx_; ++d) {
+        nlp_.addLinear(first_row + i * nx_ + d, stages_[e][i].x + d, 1.0);
+        nlp_.addLinear(first_row + i * nx_ + d, previous.x + d, -1.0);
+      }
+    }
+    for (int j = 0; j < ns; ++j) {
+      std::vector<NlpAssembly::Target> targets;
+      for (int i = 0; i < ns; ++i) {
+        if (tableau_.a(i, j) != 0.0) targets.push_back({first_row + i * nx_, -tableau_.a(i, j)});
+      }
+      nlp_.addFunctionTerm(ocp_.model->velocity(), velocityInputs(e, j), steps_[e], targets);
+    }
+    for (const StagePoint& point : stages_[e]) addLifting(point);
+  }
+  if (!steps_free_) return;
+  const double interval_length = ocp_.horizon / ocp_.num_intervals;
+  for (int k = 0; k < ocp_.num_intervals; ++k) {
+    const int row = nlp_.addRows(1, interval_length, interval_length);
+    for (int n = 0; n < options_.num_elements; ++n) {
+      nlp_.addLinear(row, steps_[k * options_.num_elements + n], 1.0);
+    }
+  }
+}
+
+void FesdDiscretization::buildComplementarity() {
+  const int ns = tableau_.stages;
+  for (int e = 0; e < numElements(); ++e) {
+    for (int k = 0; k < nc_; ++k) {
+      if (!steps_free_) {
+        for (const StagePoint& point : stages_[e]) {
+          nlp_.addComplementarity({{point.s + k, 1.0}}, {{point.lambda + k, 1.0}});
+        }
+        continue;
+      }
+      // Cross-complementarity (eq. 8): c at the element's stage points and at the previous
+      // boundary point against lambda at the stage points and at the previous element's last
+      // stage. The latter only within a control interval: a control jump may release a contact
+      // with a jump of lambda, which eq. 8c (derived for continuous f) would forbid.
+      const StagePoint& previous = previousPoint(e);
+      const bool previous_lambda = e % options_.num_elements != 0;
+      LinearExpression c_side{{previous.s + k, 1.0}}, lambda_side;
+      for (int i = 0; i < ns; ++i) {
+        c_side.push_back({stages_[e][i].s + k, 1.0});
+        lambda_side.push_back({stages_[e][i].lambda + k, 1.0});
+      }
+      if (previous_lambda) lambda_side.push_back({previous.lambda + k, 1.0});
+      if (options_.cross_complementarity == CrossComplementarity::kElementSums) {
+        nlp_.addComplementarity(c_side, lambda_side);
+        continue;
+      }
+      for (size_t a = 0; a < c_side.size(); ++a) {
+        for (size_t b = 0; b < lambda_side.size(); ++b) {
+          const bool both_previous = a == 0 && previous_lambda && b + 1 == lambda_side.size();
+          if (!both_previous) nlp_.addComplementarity({c_side[a]}, {lambda_side[b]});
+        }
+      }
+    }
+  }
+}
+
+LinearExpression FesdDiscretization::rangeExpression(int first, int count, int stride) const {
+  LinearExpression expression;
+  for (int i = 0; i < count; ++i) expression.push_back({first + i * stride, 1.0});
+  return expression;
+}
+
+void FesdDiscretization::buildStepEquilibration() {
+  if (!steps_free_) return;
+  auxiliary_variables_begin_ = nlp_.numVariables();
+  auxiliary_rows_begin_ = nlp_.numConstraints();
+  const double big_m = options_.equilibration_big_m * nominal_step_;
+  // ((h_n - h_{n-1}) / h0)^2 = 1/2 z^T Q z on z = (h_{n-1}, h_n)
+  Eigen::SparseMatrix<double> difference(2, 2);
+  const double w = 2.0 / (nominal_step_ * nominal_step_);
+  difference.insert(0, 0) = w;
+  difference.insert(1, 1) = w;
+  difference.insert(0, 1) = -w;
+  difference.insert(1, 0) = -w;
+  const auto step_difference =
+      std::make_shared<QuadraticFunction>(difference, Eigen::Vector2d::Zero(), 0.0);
+  auto add_row = [&](const LinearExpression& expression, double lower, double upper) {
+    const int row = nlp_.addRows(1, lower, upper);
+    nlp_.addLinear(row, expression);
+  };
+  // Sums over the points of an element's closure. The backward sums also take the element's start
+  // point: with one Radau stage (the end point) the stage points alone carry no trace of a
+  // contact or release at the element's end, and nu would vanish at every switch (Table I needs
+  // c > 0 before a contact and lambda > 0 before a release). A larger sum can only make nu
+  // larger, so this never forbids a switch that the paper's sums allow.
+  auto closure_sum = [&](int element, int k, bool lambda, bool with_start) {
+    LinearExpression sum;
+    if (with_start) {
+      const StagePoint& start = previousPoint(element);
+      sum.push_back({(lambda ? start.lambda : start.s) + k, 1.0});
+    }
+    for (const StagePoint& point : stages_[element]) {
+      sum.push_back({(lambda ? point.lambda : point.s) + k, 1.0});
+    }
+    return sum;
+  };
+  auto scaled = [](LinearExpression expression, double factor) {
+    for (LinearTerm& t : expression) t.coefficient *= factor;
+    return expression;
+  };
+  auto concat = [](LinearExpression a, const LinearExpression& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+  };
+  for (int k_interval = 0; k_interval < ocp_.num_intervals; ++k_interval) {
+    for (int n = 1; n < options_.num_elements; ++n) {
+      const int element = k_interval * options_.num_elements + n;
+      EquilibrationAuxiliaries aux{element - 1, element, {}, {}, {}, {}, {}, {}, {}, -1, -1};
+      LinearExpression any_switch_upper;
+      for (int k = 0; k < nc_; ++k) {
+        const int pi_lambda = nlp_.addVariables(1, 0.0, kInf);
+        const int pi_c = nlp_.addVariables(1, 0.0, kInf);
+        const int maximum = nlp_.addVariables(1, 0.0, kInf);
+        const int gap = nlp_.addVariables(2, 0.0, kInf);      // max - pi_c, max - pi_lambda
+        const int kkt = nlp_.addVariables(2, 0.0, 1.0, 0.5);  // LP multipliers of max
+        const int nu = nlp_.addVariables(1, 0.0, kInf);
+        const BoundarySums sums{
+            closure_sum(element - 1, k, true, true), closure_sum(element, k, true, false),
+            closure_sum(element - 1, k, false, true), closure_sum(element, k, false, false)};
+        // pi = backward v forward:  pi >= B, pi >= F, pi <= B + F
+        const std::tuple<int, const LinearExpression&, const LinearExpression&> disjunctions[] = {
+            {pi_lambda, sums.lambda_backward, sums.lambda_forward},
+            {pi_c, sums.c_backward, sums.c_forward}};
+        for (const auto& [pi, backward, forward] : disjunctions) {
+          add_row(concat({{pi, 1.0}}, scaled(backward, -1.0)), 0.0, kInf);
+          add_row(concat({{pi, 1.0}}, scaled(forward, -1.0)), 0.0, kInf);
+          add_row(concat(concat({{pi, 1.0}}, scaled(backward, -1.0)), scaled(forward, -1.0)), -kInf,
+                  0.0);
+        }
+        // maximum = max(pi_c, pi_lambda) by the KKT conditions of min z s.t. z >= pi_c, pi_lambda:
+        // gaps z - pi >= 0 (lifted, so every complementarity pair is between nonnegative
+        // variables), multipliers summing to one, each complementary to its gap.
+        add_row({{gap, 1.0}, {maximum, -1.0}, {pi_c, 1.0}}, 0.0, 0.0);
+        add_row({{gap + 1, 1.0}, {maximum, -1.0}, {pi_lambda, 1.0}}, 0.0, 0.0);
+        add_row({{kkt, 1.0}, {kkt + 1, 1.0}}, 1.0, 1.0);
+        nlp_.addComplementarity({{gap, 1.0}}, {{kkt, 1.0}});
+        nlp_.addComplementarity({{gap + 1, 1.0}}, {{kkt + 1, 1.0}});
+        // nu = pi_c ^ pi_lambda:  nu <= pi_c, nu <= pi_lambda, nu >= pi_c + pi_lambda - max
+        add_row({{nu, 1.0}, {pi_c, -1.0}}, -kInf, 0.0);
+        add_row({{nu, 1.0}, {pi_lambda, -1.0}}, -kInf, 0.0);
+        add_row({{nu, 1.0}, {pi_c, -1.0}, {pi_lambda, -1.0}, {maximum, 1.0}}, 0.0, kInf);
+        aux.sums.push_back(sums);
+        aux.pi_lambda.push_back(pi_lambda);
+        aux.pi_c.push_back(pi_c);
+        aux.maximum.push_back(maximum);
+        aux.gap.push_back(gap);
+        aux.kkt.push_back(kkt);
+        aux.nu.push_back(nu);
+        any_switch_upper.push_back({nu, -1.0});
+      }
+      // OR over the constraints: nu_k <= eta <= sum_k nu_k
+      aux.any_switch = nlp_.addVariables(1, 0.0, kInf);
+      for (int nu : aux.nu) add_row({{aux.any_switch, 1.0}, {nu, -1.0}}, 0.0, kInf);
+      add_row(concat({{aux.any_switch, 1.0}}, any_switch_upper), -kInf, 0.0);
+      // -eta M <= h_{n-1} - h_n <= eta M
+      const int h_prev = steps_[element - 1], h = steps_[element];
+      if (options_.step_regularization > 0.0) {
+        nlp_.addFunctionTerm(step_difference, {h_prev, h}, -1,
+                             {{NlpAssembly::kObjective, options_.step_regularization, true}});
+      }
+      add_row({{h_prev, 1.0}, {h, -1.0}, {aux.any_switch, -big_m}}, -kInf, 0.0);
+      add_row({{h_prev, 1.0}, {h, -1.0}, {aux.any_switch, big_m}}, 0.0, kInf);
+      equilibration_.push_back(aux);
+    }
+  }
+  auxiliary_variables_end_ = nlp_.numVariables();
+  auxiliary_rows_end_ = nlp_.numConstraints();
+  for (EquilibrationAuxiliaries& aux : equilibration_) {
+    aux.equal_steps_row = nlp_.addRows(1, -kInf, kInf);
+    nlp_.addLinear(aux.equal_steps_row,
+                   {{steps_[aux.previous_element], 1.0}, {steps_[aux.element], -1.0}});
+  }
+  nlp_.setActiveSetHook([this](const double* x) { equilibrateActiveSet(x); });
+}
+
+void FesdDiscretization::equilibrateActiveSet(const double* x) {
+  // Frozen at values exactly consistent with the point (max, min, KKT multipliers in {0, 1}).
+  std::vector<double> consistent(x, x + nlp_.numVariables());
+  completeAuxiliaries(consistent);
+  for (int v = auxiliary_variables_begin_; v < auxiliary_variables_end_; ++v) {
+    nlp_.setVariableBounds(v, consistent[v], consistent[v]);
+  }
+  for (int row = auxiliary_rows_begin_; row < auxiliary_rows_end_; ++row) {
+    nlp_.setRowBounds(row, -kInf, kInf);
+  }
+  // A fixed variable of (near) zero value: a side fixed by the active set, or zero data.
+  auto nonzero = [&](const LinearExpression& sum) {
+    for (const LinearTerm& t : sum) {
+      const double lower = nlp_.variableLower(t.variable);
+      if (lower != nlp_.variableUpper(t.variable) || std::fabs(lower) > 1e-9) return true;
+    }
+    return false;
+  };
+  for (const EquilibrationAuxiliaries& aux : equilibration_) {
+    bool any_switch = false;
+    for (const BoundarySums& sums : aux.sums) {
+      any_switch |= (nonzero(sums.c_backward) || nonzero(sums.c_forward)) &&
+                    (nonzero(sums.lambda_backward) || nonzero(sums.lambda_forward));
+    }
+    if (!any_switch) nlp_.setRowBounds(aux.equal_steps_row, 0.0, 0.0);
+  }
+}
+
+void FesdDiscretization::buildCostsAndConstraints() {
+  const StagePoint& end = stages_.back().back();
+  std::vector<int> end_state;
+  for (int d = 0; d < nx_; ++d) end_state.push_back(end.x + d);
+  for (int e = 0; e < numElements(); ++e) {
+    for (int j = 0; j < tableau_.stages; ++j) {
+      const StagePoint& point = stages_[e][j];
+      if (ocp_.lagrange_cost) {
+        nlp_.addFunctionTerm(ocp_.lagrange_cost, stateControlInputs(point, e), steps_[e],
+                             {{NlpAssembly::kObjective, tableau_.b(j)}});
+      }
+      const bool boundary = j + 1 == tableau_.stages;
+      if (ocp_.path_constraints && (boundary || ocp_.path_constraints_at_all_stages)) {
+        const int row = nlp_.addRows(ocp_.path_constraints->outputSize(), -kInf, 0.0);
+        nlp_.addFunctionTerm(ocp_.path_constraints, stateControlInputs(point, e), -1, {{row, 1.0}});
+      }
+    }
+  }
+  if (ocp_.mayer_cost) {
+    nlp_.addFunctionTerm(ocp_.mayer_cost, end_state, -1, {{NlpAssembly::kObjective, 1.0}});
+  }
+  if (ocp_.terminal_constraints) {
+    const int row = nlp_.addRows(ocp_.terminal_constraints->outputSize(), -kInf, 0.0);
+    nlp_.addFunctionTerm(ocp_.terminal_constraints, end_state, -1, {{row, 1.0}});
+  }
+}
+
+void FesdDiscretization::setInitialState(const Eigen::VectorXd& x0) {
+  if (x0.size() != nx_) throw std::invalid_argument("initial state has the wrong size");
+  ocp_.initial_state = x0;
+  for (int d = 0; d < nx_; ++d) {
+    nlp_.setVariableBounds(start_.x + d, x0(d), x0(d));
+    nlp_.initialGuess()[start_.x + d] = x0(d);
+  }
+  Eigen::VectorXd c0(nc_);
+  ocp_.model->constraints()->evaluate(x0.data(), c0.data());
+  for (int k = 0; k < nc_; ++k) {
+    nlp_.setVariableBounds(start_.s + k, c0(k), c0(k));
+    nlp_.initialGuess()[start_.s + k] = c0(k);
+  }
+}
+
+void FesdDiscretization::setInitialMultipliers(const Eigen::VectorXd& lambda0) {
+  if (lambda0.size() != nc_) throw std::invalid_argument("initial multipliers have the wrong size");
+  for (int k = 0; k < nc_; ++k) {
+    const double value = std::max(lambda0(k), 0.0);
+    nlp_.setVariableBounds(start_.lambda + k, value, value);
+    nlp_.initialGuess()[start_.lambda + k] = value;
+  }
+}
+
+void FesdDiscretization::fixControl(int interval, const Eigen::VectorXd& u) {
+  if (u.size() != nu_) throw std::invalid_argument("control has the wrong size");
+  for (int d = 0; d < nu_; ++d) {
+    nlp_.setVariableBounds(controls_.at(interval) + d, u(d), u(d));
+    nlp_.initialGuess()[controls_[interval] + d] = u(d);
+  }
+}
+
+void FesdDiscretization::freeControl(int interval) {
+  for (int d = 0; d < nu_; ++d) {
+    nlp_.setVariableBounds(controls_.at(interval) + d,
+                           ocp_.control_lower.size() ? ocp_.control_lower(d) : -kInf,
+                           ocp_.control_upper.size() ? ocp_.control_upper(d) : kInf);
+    nlp_.initialGuess()[controls_[interval] + d] = clippedControl(interval, d, 0.0);
+  }
+}
+
+double FesdDiscretization::clippedControl(int interval, int component, double value) const {
+  const int index = controls_[interval] + component;
+  return std::min(std::max(value, nlp_.variableLower(index)), nlp_.variableUpper(index));
+}
+
+std::vector<double> FesdDiscretization::constantGuess(
+    const std::vector<Eigen::VectorXd>& controls) const {
+  std::vector<double> x = nlp_.initialGuess();  // holds the start point's data
+  for (const auto& element : stages_) {
+    for (const StagePoint& point : element) {
+      for (int d = 0; d < nx_; ++d) x[point.x + d] = ocp_.initial_state(d);
+      for (int k = 0; k < nc_; ++k) {
+        x[point.s + k] = std::max(x[start_.s + k], 0.0);
+        x[point.lambda + k] = 0.0;
+      }
+    }
+  }
+  for (int e = 0; e < numElements(); ++e) x[steps_[e]] = nominal_step_;
+  for (int k = 0; k < ocp_.num_intervals; ++k) {
+    for (int d = 0; d < nu_; ++d) {
+      const double wanted = k < static_cast<int>(controls.size()) ? controls[k](d) : 0.0;
+      x[controls_[k] + d] = clippedControl(k, d, wanted);
+    }
+  }
+  completeAuxiliaries(x);
+  return x;
+}
+
+std::vector<double> FesdDiscretization::translatedGuess(
+    const std::vector<double>& previous_solution) const {
+  if (static_cast<int>(previous_solution.size()) != nlp_.numVariables()) {
+    throw std::invalid_argument("translatedGuess: solution of a differently sized problem");
+  }
+  std::vector<double> x = previous_solution;
+  const Eigen::VectorXd shift =
+      ocp_.initial_state - Eigen::Map<const Eigen::VectorXd>(x.data() + start_.x, nx_);
+  auto move_point = [&](const StagePoint& point) {
+    Eigen::Map<Eigen::VectorXd> state(x.data() + point.x, nx_);
+    state += shift;
+    ocp_.model->constraints()->evaluate(state.data(), x.data() + point.s);
+  };
+  for (const auto& element : stages_) {
+    for (const StagePoint& point : element) move_point(point);
+  }
+  for (int i = 0; i < nx_; ++i) x[start_.x + i] = nlp_.initialGuess()[start_.x + i];
+  for (int k = 0; k < nc_; ++k) {
+    x[start_.s + k] = nlp_.initialGuess()[start_.s + k];
+    x[start_.lambda + k] = nlp_.initialGuess()[start_.lambda + k];
+  }
+  completeAuxiliaries(x);
+  return x;
+}
+
+void FesdDiscretization::completeAuxiliaries(std::vector<double>& x) const {
+  auto value = [&](const LinearExpression& expression) {
+    double total = 0.0;
+    for (const LinearTerm& t : expression) total += t.coefficient * x[t.variable];
+    return total;
+  };
+  for (const EquilibrationAuxiliaries& aux : equilibration_) {
+    double any = 0.0;
+    for (int k = 0; k < nc_; ++k) {
+      const BoundarySums& sums = aux.sums[k];
+      const double pi_lambda = std::max(value(sums.lambda_backward), value(sums.lambda_forward));
+      const double pi_c = std::max(value(sums.c_backward), value(sums.c_forward));
+      x[aux.pi_lambda[k]] = pi_lambda;
+      x[aux.pi_c[k]] = pi_c;
+      x[aux.maximum[k]] = std::max(pi_c, pi_lambda);
+      x[aux.gap[k]] = std::max(pi_c, pi_lambda) - pi_c;
+      x[aux.gap[k] + 1] = std::max(pi_c, pi_lambda) - pi_lambda;
+      x[aux.kkt[k]] = pi_c >= pi_lambda ? 1.0 : 0.0;  // the LP multiplier of the larger side
+      x[aux.kkt[k] + 1] = pi_c >= pi_lambda ? 0.0 : 1.0;
+      x[aux.nu[k]] = std::min(pi_c, pi_lambda);
+      any = std::max(any, x[aux.nu[k]]);
+    }
+    x[aux.any_switch] = any;
+  }
+}
+
+Trajectory FesdDiscretization::extract(const double* x, double start_time,
+                                       double activity_tolerance) const {
+  const int ns = tableau_.stages;
+  Trajectory trajectory;
+  const double interval_length = ocp_.horizon / ocp_.num_intervals;
+  for (int k = 0; k <= ocp_.num_intervals; ++k) {
+    trajectory.interval_times.push_back(start_time + k * interval_length);
+  }
+  for (int k = 0; k < ocp_.num_intervals; ++k) {
+    trajectory.controls.push_back(Eigen::Map<const Eigen::VectorXd>(x + controls_[k], nu_));
+  }
+  double time = start_time;
+  trajectory.times.push_back(time);
+  trajectory.states.push_back(Eigen::Map<const Eigen::VectorXd>(x + start_.x, nx_));
+  for (int e = 0; e < numElements(); ++e) {
+    ElementValues element{e / options_.num_elements,
+                          time,
+                          x[steps_[e]],
+                          Eigen::MatrixXd(nx_, ns),
+                          Eigen::MatrixXd(nc_, ns),
+                          Eigen::MatrixXd(nc_, ns)};
+    for (int j = 0; j < ns; ++j) {
+      const StagePoint& point = stages_[e][j];
+      element.stage_states.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.x, nx_);
+      element.stage_multipliers.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.lambda, nc_);
+      element.stage_constraints.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.s, nc_);
+    }
+    time += element.step;
+    trajectory.times.push_back(time);
+    trajectory.states.push_back(element.stage_states.col(ns - 1));
+    trajectory.elements.push_back(std::move(element));
+  }
+  std::vector<bool> initially_active(nc_);
+  for (int k = 0; k < nc_; ++k) initially_active[k] = x[start_.s + k] <= activity_tolerance;
+  trajectory.switches = detectSwitches(trajectory.elements, initially_active, activity_tolerance);
+  return trajectory;
+}
+
+}  // namespace fesd

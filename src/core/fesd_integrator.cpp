@@ -1,0 +1,90 @@
+#include "fesd_trajopt/core/fesd_integrator.h"
+
+#include <sstream>
+#include <stdexcept>
+
+#include "fesd_trajopt/core/stopwatch.h"
+
+namespace fesd {
+
+FesdIntegrator::FesdIntegrator(std::shared_ptr<const DcsModel> model, SimulationOptions options)
+    : model_(std::move(model)), options_(std::move(options)) {
+  if (!model_) throw std::invalid_argument("FesdIntegrator: no model");
+}
+
+SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double horizon, int num_steps,
+                                          const std::vector<Eigen::VectorXd>& controls) {
+  if (num_steps < 1) throw std::invalid_argument("FesdIntegrator: num_steps must be >= 1");
+  const int nu = model_->controlSize();
+  if (!(controls.size() == static_cast<size_t>(num_steps) || controls.size() == 1 ||
+        (controls.empty() && nu == 0))) {
+    throw std::invalid_argument("FesdIntegrator: give one control per step or a single one");
+  }
+  Stopwatch stopwatch;
+  OcpDefinition step_problem;
+  step_problem.model = model_;
+  step_problem.initial_state = x0;
+  step_problem.horizon = horizon / num_steps;
+  step_problem.num_intervals = 1;
+  FesdDiscretization discretization(step_problem, options_.discretization);
+  MpccSolver solver(options_.homotopy);
+  MpccSolver retry_solver(options_.retry_homotopy);
+
+  SimulationResult result;
+  result.status = SolveStatus::kSuccess;
+  Eigen::VectorXd state = x0;
+  Eigen::VectorXd last_multipliers;
+  std::vector<double> previous_solution;
+  for (int step = 0; step < num_steps; ++step) {
+    discretization.setInitialState(state);
+    if (step > 0) discretization.setInitialMultipliers(last_multipliers);
+    const Eigen::VectorXd u =
+        controls.empty() ? Eigen::VectorXd() : controls[controls.size() == 1 ? 0 : step];
+    if (nu > 0) discretization.fixControl(0, u);
+    const std::vector<double> guess = step == 0 || !options_.reuse_previous_step
+                                          ? discretization.constantGuess({u})
+                                          : discretization.translatedGuess(previous_solution);
+    MpccReport report = solver.solve(discretization.nlp(), guess);
+    if (!report.converged() && report.status != SolveStatus::kTimeout) {
+      MpccReport retry = retry_solver.solve(discretization.nlp(), guess);
+      retry.addEffort(report);  // both attempts' effort counts
+      if (retry.converged()) ++result.retried_steps;
+      report = std::move(retry);
+    }
+    previous_solution = report.solution;
+    result.totals.accumulate(report);
+    result.step_histories.push_back(report.history);
+    Trajectory piece = discretization.extract(report.solution.data(), step * step_problem.horizon,
+                                              options_.activity_tolerance);
+    result.trajectory.append(piece);
+    state = piece.finalState();
+    last_multipliers = piece.elements.back().stage_multipliers.rightCols(1);
+    if (!report.converged()) {
+      result.status = report.status;
+      result.message = "step " + std::to_string(step) + " of " + std::to_string(num_steps) +
+                       " did not converge: " + report.message;
+      break;
+    }
+    ++result.completed_steps;
+  }
+  Eigen::VectorXd c0(model_->constraintSize());
+  model_->constraints()->evaluate(x0.data(), c0.data());
+  std::vector<bool> initially_active(c0.size());
+  for (int k = 0; k < c0.size(); ++k) initially_active[k] = c0(k) <= options_.activity_tolerance;
+  result.trajectory.switches =
+      detectSwitches(result.trajectory.elements, initially_active, options_.activity_tolerance);
+  if (result.status == SolveStatus::kSuccess) {
+    std::ostringstream message;
+    message << "simulated " << num_steps << " step(s): " << result.totals.iterations
+            << " Ipopt iterations, " << result.trajectory.switches.size() << " switch(es)";
+    if (result.retried_steps > 0) message << ", " << result.retried_steps << " step(s) retried";
+    result.message = message.str();
+  }
+  result.totals.status = result.status;
+  result.totals.message = result.message;
+  result.totals.wall_seconds = stopwatch.wallSeconds();
+  result.totals.cpu_seconds = stopwatch.cpuSeconds();
+  return result;
+}
+
+}  // namespace fesd

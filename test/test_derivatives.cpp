@@ -1,0 +1,212 @@
+// Every model and constraint derivative against central finite differences at random points:
+// the analytic and AD model functions, and the assembled NLP (Jacobian and Lagrangian Hessian).
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "fesd_trajopt/core/affine_function.h"
+#include "fesd_trajopt/core/autodiff_model.h"
+#include "fesd_trajopt/core/circle_example.h"
+#include "fesd_trajopt/core/fesd_discretization.h"
+#include "fesd_trajopt/core/quadratic_function.h"
+#include "finite_differences.h"
+
+namespace {
+
+using fesd_test::checkAgainstFiniteDifferences;
+using fesd_test::randomVector;
+
+constexpr double kTolerance = 1e-6;
+
+/// A nonlinear DCS whose constraint has nonzero third derivatives, so the velocity's Hessian
+/// (which contains them) is exercised: x in R^3, u in R^2, two constraints.
+struct BeadDynamics {
+  template <class T>
+  void operator()(const T* x, const T* u, T* f) const {
+    using std::cos;
+    using std::exp;
+    using std::sin;
+    f[0] = u[0] * cos(x[2]) + x[1] * x[0] * x[0];
+    f[1] = sin(x[0]) * u[1];
+    f[2] = x[0] * x[1] - exp(0.1 * x[2]) + u[0] * u[1];
+  }
+};
+struct BeadConstraints {
+  template <class T>
+  void operator()(const T* x, T* c) const {
+    using std::exp;
+    using std::sin;
+    c[0] = 1.0 - x[0] * x[0] - x[1] * x[1] - 0.5 * sin(x[2]) * sin(x[2]);
+    c[1] = exp(0.2 * x[0]) * x[1] + 0.3 * x[2] * x[2] * x[2];
+  }
+};
+
+std::shared_ptr<const fesd::DcsModel> beadModel() {
+  return std::make_shared<fesd::DcsModel>(
+      fesd::makeAutoDiffModel(3, 2, 2, BeadDynamics{}, BeadConstraints{}, "bead"));
+}
+
+TEST(ModelDerivatives, AutoDiffModelAgainstFiniteDifferences) {
+  std::mt19937 random(7);
+  const auto model = beadModel();
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::VectorXd z = randomVector(7, random);  // (x, u, lambda)
+    const auto velocity =
+        checkAgainstFiniteDifferences(*model->velocity(), z, randomVector(3, random));
+    EXPECT_LT(velocity.jacobian, kTolerance);
+    EXPECT_LT(velocity.hessian, kTolerance);
+    const auto constraints =
+        checkAgainstFiniteDifferences(*model->constraints(), z.head(3), randomVector(2, random));
+    EXPECT_LT(constraints.jacobian, kTolerance);
+    EXPECT_LT(constraints.hessian, kTolerance);
+  }
+}
+
+TEST(ModelDerivatives, AutoDiffVelocityIsDynamicsPlusConstraintGradientTimesLambda) {
+  std::mt19937 random(3);
+  const auto model = beadModel();
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd z = randomVector(7, random);
+    Eigen::VectorXd v(3), f(3);
+    model->velocity()->evaluate(z.data(), v.data());
+    BeadDynamics{}(z.data(), z.data() + 3, f.data());
+    const Eigen::MatrixXd constraint_jacobian = fesd_test::finiteDifferenceJacobian(
+        [](const Eigen::VectorXd& x) {
+          Eigen::VectorXd c(2);
+          BeadConstraints{}(x.data(), c.data());
+          return c;
+        },
+        z.head(3));
+    EXPECT_LT((v - f - constraint_jacobian.transpose() * z.tail(2)).norm(), 1e-8);
+  }
+}
+
+TEST(ModelDerivatives, AnalyticCircleExampleMatchesFiniteDifferencesAndAutoDiff) {
+  std::mt19937 random(11);
+  const auto analytic = fesd::circle_example::model();
+  const auto autodiff = fesd::circle_example::autodiffModel();
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd z = randomVector(3, random, -3.0, 3.0);
+    const auto errors =
+        checkAgainstFiniteDifferences(*analytic->velocity(), z, randomVector(2, random));
+    EXPECT_LT(errors.jacobian, kTolerance);
+    EXPECT_LT(errors.hessian, kTolerance);
+    const auto c_errors =
+        checkAgainstFiniteDifferences(*analytic->constraints(), z.head(2), randomVector(1, random));
+    EXPECT_LT(c_errors.jacobian, kTolerance);
+    EXPECT_LT(c_errors.hessian, kTolerance);
+    EXPECT_LT((fesd_test::exactJacobian(*analytic->velocity(), z) -
+               fesd_test::exactJacobian(*autodiff->velocity(), z))
+                  .norm(),
+              1e-14);
+  }
+}
+
+TEST(ModelDerivatives, QuadraticAndAffineFunctions) {
+  std::mt19937 random(5);
+  Eigen::SparseMatrix<double> q(3, 3);
+  q.insert(0, 0) = 2.0;
+  q.insert(1, 2) = -0.5;
+  q.insert(2, 1) = -0.5;
+  q.insert(2, 2) = 1.0;
+  const fesd::QuadraticFunction quadratic(q, Eigen::Vector3d(0.0, 1.0, -2.0), 3.0);
+  Eigen::SparseMatrix<double> a(2, 3);
+  a.insert(0, 1) = 4.0;
+  a.insert(1, 0) = -1.0;
+  a.insert(1, 2) = 0.5;
+  const fesd::AffineFunction affine(a, Eigen::Vector2d(1.0, -1.0));
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd z = randomVector(3, random, -2.0, 2.0);
+    const auto qe = checkAgainstFiniteDifferences(quadratic, z, randomVector(1, random));
+    EXPECT_LT(qe.jacobian, kTolerance);
+    EXPECT_LT(qe.hessian, kTolerance);
+    const auto ae = checkAgainstFiniteDifferences(affine, z, randomVector(2, random));
+    EXPECT_LT(ae.jacobian, kTolerance);
+    EXPECT_LT(ae.hessian, kTolerance);
+  }
+  const auto distance = fesd::QuadraticFunction::weightedDistance(Eigen::Vector2d(2.0, 0.5),
+                                                                  Eigen::Vector2d(1.0, -1.0));
+  double value;
+  const Eigen::Vector2d at(3.0, 1.0);
+  distance->evaluate(at.data(), &value);
+  EXPECT_DOUBLE_EQ(value, 2.0 * 4.0 + 0.5 * 4.0);
+}
+
+/// A full OCP on the nonlinear model: every kind of NLP piece is present.
+fesd::OcpDefinition beadOcp() {
+  fesd::OcpDefinition ocp;
+  ocp.model = beadModel();
+  ocp.initial_state = Eigen::Vector3d(0.3, 0.2, 0.1);
+  ocp.horizon = 1.5;
+  ocp.num_intervals = 2;
+  ocp.control_lower = Eigen::Vector2d(-2.0, -2.0);
+  ocp.control_upper = Eigen::Vector2d(2.0, 2.0);
+  ocp.lagrange_cost = fesd::makeAutoDiffFunction(5, 1, [](const auto* z, auto* y) {
+    using std::sin;
+    y[0] = z[0] * z[0] * z[3] * z[3] + sin(z[1]) * z[4];
+  });
+  ocp.mayer_cost = fesd::makeAutoDiffFunction(3, 1, [](const auto* x, auto* y) {
+    using std::exp;
+    y[0] = exp(x[0] * x[2]);
+  });
+  ocp.path_constraints = fesd::makeAutoDiffFunction(5, 2, [](const auto* z, auto* g) {
+    g[0] = z[0] + z[3] * z[3];
+    g[1] = z[1] * z[4] - 1.0;
+  });
+  ocp.terminal_constraints = fesd::makeAutoDiffFunction(
+      3, 1, [](const auto* x, auto* g) { g[0] = x[0] * x[0] + x[2] - 2.0; });
+  return ocp;
+}
+
+struct NlpCase {
+  bool switch_detection;
+  fesd::CrossComplementarity cross;
+  int stages;
+};
+
+class NlpDerivatives : public ::testing::TestWithParam<NlpCase> {};
+
+TEST_P(NlpDerivatives, JacobianAndLagrangianHessianAgainstFiniteDifferences) {
+  fesd::DiscretizationOptions options;
+  options.num_stages = GetParam().stages;
+  options.num_elements = 3;
+  options.switch_detection = GetParam().switch_detection;
+  options.cross_complementarity = GetParam().cross;
+  fesd::FesdDiscretization discretization(beadOcp(), options);
+  fesd::NlpAssembly& nlp = discretization.nlp();
+  std::mt19937 random(17);
+  for (int trial = 0; trial < 3; ++trial) {
+    nlp.setRelaxation(std::uniform_real_distribution<double>(0.0, 1.0)(random));
+    const Eigen::VectorXd x = randomVector(nlp.numVariables(), random, 0.05, 1.0);
+    const Eigen::VectorXd multipliers = randomVector(nlp.numConstraints(), random);
+    const auto errors = fesd_test::checkNlpAgainstFiniteDifferences(nlp, x, 0.7, multipliers);
+    EXPECT_LT(errors.jacobian, kTolerance);
+    EXPECT_LT(errors.hessian, kTolerance);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Formulations, NlpDerivatives,
+    ::testing::Values(NlpCase{true, fesd::CrossComplementarity::kElementSums, 2},
+                      NlpCase{true, fesd::CrossComplementarity::kStagePairs, 2},
+                      NlpCase{true, fesd::CrossComplementarity::kElementSums, 3},
+                      NlpCase{false, fesd::CrossComplementarity::kElementSums, 2}));
+
+TEST(NlpStructure, StandardMethodHasNoCrossComplementarityOrEquilibration) {
+  fesd::DiscretizationOptions fesd_options, standard_options;
+  fesd_options.num_stages = standard_options.num_stages = 2;
+  fesd_options.num_elements = standard_options.num_elements = 3;
+  standard_options.switch_detection = false;
+  fesd::FesdDiscretization with(beadOcp(), fesd_options), without(beadOcp(), standard_options);
+  // Standard: one pair per stage and constraint. FESD: one product of sums per element and
+  // constraint plus two max-KKT pairs per inner boundary and constraint.
+  const int elements = 6, stages = 2, constraints = 2, boundaries = 2 * 2;
+  EXPECT_EQ(without.nlp().numComplementarities(), elements * stages * constraints);
+  EXPECT_EQ(with.nlp().numComplementarities(),
+            elements * constraints + 2 * boundaries * constraints);
+  EXPECT_FALSE(without.stepsAreFree());
+  EXPECT_TRUE(with.stepsAreFree());
+}
+
+}  // namespace

@@ -1,0 +1,93 @@
+// The homotopy solver on tiny problems with known answers, and its status reporting.
+#include <gtest/gtest.h>
+
+#include "fesd_trajopt/core/mpcc_solver.h"
+#include "fesd_trajopt/core/nlp_assembly.h"
+#include "fesd_trajopt/core/quadratic_function.h"
+
+namespace {
+
+/// min (x-1)^2 + (y-1)^2  s.t.  0 <= x _|_ y >= 0: minimisers (1, 0) and (0, 1), value 1.
+struct CornerMpcc {
+  fesd::NlpAssembly nlp;
+  int x, y;
+  CornerMpcc() {
+    x = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+    y = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+    nlp.addFunctionTerm(
+        fesd::QuadraticFunction::weightedDistance(Eigen::Vector2d::Ones(), Eigen::Vector2d::Ones()),
+        {x, y}, -1, {{fesd::NlpAssembly::kObjective, 1.0}});
+    nlp.addComplementarity({{x, 1.0}}, {{y, 1.0}});
+  }
+  fesd::MpccReport solve(const fesd::HomotopyOptions& options = {}) {
+    nlp.finalize();
+    return fesd::MpccSolver(options).solve(nlp, {1.0, 0.5});
+  }
+};
+
+TEST(MpccSolver, ScholtesHomotopyReachesAStronglyStationaryPoint) {
+  CornerMpcc problem;
+  const fesd::MpccReport report = problem.solve();
+  ASSERT_EQ(report.status, fesd::SolveStatus::kSuccess) << report.message;
+  EXPECT_NEAR(report.solution[problem.x], 1.0, 1e-6);
+  EXPECT_NEAR(report.solution[problem.y], 0.0, 1e-6);
+  EXPECT_NEAR(report.objective, 1.0, 1e-6);
+  EXPECT_LE(report.complementarity_residual, 1e-9);
+  // sigma0 = 1, kappa = 0.1 (the notes' defaults): residual ~ sigma, so about ten steps.
+  ASSERT_GE(report.history.size(), 2u);
+  EXPECT_DOUBLE_EQ(report.history[0].sigma, 1.0);
+  EXPECT_DOUBLE_EQ(report.history[1].sigma, 0.1);
+  EXPECT_GT(report.iterations, 0);
+  EXPECT_GE(report.wall_seconds, report.ipopt_seconds);
+}
+
+TEST(MpccSolver, SmoothProblemIsSolvedOnceWithoutHomotopy) {
+  fesd::NlpAssembly nlp;
+  const int x = nlp.addVariables(2, -10.0, 10.0);
+  nlp.addFunctionTerm(fesd::QuadraticFunction::weightedDistance(Eigen::Vector2d(1.0, 2.0),
+                                                                Eigen::Vector2d(3.0, -4.0)),
+                      {x, x + 1}, -1, {{fesd::NlpAssembly::kObjective, 1.0}});
+  nlp.finalize();
+  fesd::MpccSolver solver;
+  const fesd::MpccReport report = solver.solve(nlp, {0.0, 0.0});
+  ASSERT_EQ(report.status, fesd::SolveStatus::kSuccess);
+  EXPECT_EQ(report.history.size(), 1u);
+  EXPECT_NEAR(report.solution[0], 3.0, 1e-8);
+  EXPECT_NEAR(report.solution[1], -4.0, 1e-8);
+}
+
+TEST(MpccSolver, ReportsInfeasibility) {
+  CornerMpcc problem;
+  const int row = problem.nlp.addRows(1, -fesd::NlpAssembly::kInfinity, -1.0);  // x + y <= -1
+  problem.nlp.addLinear(row, {{problem.x, 1.0}, {problem.y, 1.0}});
+  fesd::HomotopyOptions options;
+  options.max_steps = 3;
+  const fesd::MpccReport report = problem.solve(options);
+  EXPECT_EQ(report.status, fesd::SolveStatus::kInfeasible) << report.message;
+  EXPECT_NE(report.message.find("infeasible"), std::string::npos);
+}
+
+TEST(MpccSolver, ReportsTheIterationLimit) {
+  fesd::HomotopyOptions options;
+  options.ipopt.max_iterations = 1;
+  options.continue_after_failure = false;
+  const fesd::MpccReport report = CornerMpcc().solve(options);
+  EXPECT_EQ(report.status, fesd::SolveStatus::kMaxIterations) << report.message;
+}
+
+TEST(MpccSolver, HonoursTheWallTimeBudgetAndKeepsTheIterate) {
+  fesd::HomotopyOptions options;
+  options.wall_time_budget = 0.0;
+  const fesd::MpccReport report = CornerMpcc().solve(options);
+  EXPECT_EQ(report.status, fesd::SolveStatus::kTimeout) << report.message;
+  EXPECT_EQ(report.history.size(), 1u);
+  EXPECT_EQ(report.solution.size(), 2u);
+}
+
+TEST(MpccSolver, RejectsUnknownIpoptOptions) {
+  fesd::HomotopyOptions options;
+  options.ipopt.extra_options["no_such_option"] = "1";
+  EXPECT_THROW(fesd::MpccSolver solver(options), std::invalid_argument);
+}
+
+}  // namespace
