@@ -21,6 +21,11 @@ const std::map<std::string, Command>& commands() {
        {fesd_bench::derivatives,
         "Cost of one model evaluation (value + Jacobian + Hessian): analytic vs Eigen AutoDiff.\n"
         "    --repeat=200000"}},
+      {"ocp-manipulation",
+       {fesd_bench::ocpManipulation,
+        "The collaborative manipulation OCP (seed 000 Sec. IV-B), key=value per run.\n"
+        "    --intervals=30 --elements=3 --stages=2 --fesd=true --repeat=1 --step-bound=0.5\n"
+        "    --fixed-grid-until=1e-2 --resim-stages=n_s+1 --resim-elements=2*elements"}},
       {"order-pds",
        {fesd_bench::orderPds,
         "Example 1 (seed 000): terminal error vs step for FESD and standard, Radau-IIA.\n"

@@ -13,6 +13,8 @@ DEBIAN_PACKAGES=(
   build-essential cmake pkg-config
   catkin libroscpp-dev ros-message-generation librostest-dev python3-rostest python3-roslaunch
   rosbash libvisualization-msgs-dev libgeometry-msgs-dev liburdfdom-dev rviz
+  ros-std-msgs ros-geometry-msgs python3-rospy python3-std-msgs python3-geometry-msgs
+  python3-visualization-msgs python3-rosservice python3-rostopic python3-rosnode
   coinor-libipopt-dev libeigen3-dev libgtest-dev libsiconos-kernel-dev
   gnuplot-nox python3-matplotlib xvfb
 )

@@ -108,6 +108,7 @@ void FesdDiscretization::buildVariables() {
       stages_.push_back(points);
     }
   }
+  core_variables_ = nlp_.numVariables();
 }
 
 const FesdDiscretization::StagePoint& FesdDiscretization::previousPoint(int element) const {
@@ -446,6 +447,19 @@ std::vector<double> FesdDiscretization::constantGuess(
       x[controls_[k] + d] = clippedControl(k, d, wanted);
     }
   }
+  completeAuxiliaries(x);
+  return x;
+}
+
+std::vector<double> FesdDiscretization::adoptedGuess(const FesdDiscretization& other,
+                                                     const std::vector<double>& solution) const {
+  if (other.core_variables_ != core_variables_ || other.numElements() != numElements() ||
+      other.tableau_.stages != tableau_.stages ||
+      static_cast<int>(solution.size()) != other.nlp_.numVariables()) {
+    throw std::invalid_argument("adoptedGuess: the discretisations' grids differ");
+  }
+  std::vector<double> x = constantGuess();
+  std::copy(solution.begin(), solution.begin() + core_variables_, x.begin());
   completeAuxiliaries(x);
   return x;
 }

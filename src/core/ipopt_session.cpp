@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <mutex>
 #include <stdexcept>
 
 #include <coin/IpIpoptData.hpp>
@@ -174,10 +175,8 @@ IpoptSession::IpoptSession(const IpoptSettings& settings)
   Ipopt::OptionsList& options = *application_->Options();
   options.SetStringValue("sb", "yes");
   options.SetIntegerValue("print_level", settings.print_level);
-  options.SetNumericValue("tol", settings.tolerance);
   options.SetNumericValue("acceptable_tol", settings.acceptable_tolerance);
   options.SetIntegerValue("max_iter", settings.max_iterations);
-  options.SetStringValue("mu_strategy", settings.mu_strategy);
   options.SetStringValue("linear_solver", settings.linear_solver);
   options.SetStringValue("hessian_approximation", "exact");
   // Complementarity products must be resolved far below Ipopt's default bound relaxation (1e-8).
@@ -193,23 +192,32 @@ IpoptSession::IpoptSession(const IpoptSettings& settings)
 }
 
 NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point,
-                               double deadline_seconds, double warm_start_mu) {
+                               const SolveSettings& solve_settings) {
   Ipopt::OptionsList& options = *application_->Options();
+  options.SetNumericValue("tol", solve_settings.tolerance);
+  options.SetNumericValue("obj_scaling_factor", solve_settings.objective_scaling);
   if (point.has_multipliers) {
+    options.SetStringValue("mu_strategy", settings_.mu_strategy);
     options.SetStringValue("warm_start_init_point", "yes");
-    options.SetNumericValue("mu_init", warm_start_mu);
+    options.SetNumericValue("mu_init", solve_settings.warm_start_mu);
     for (const char* name :
          {"warm_start_bound_push", "warm_start_bound_frac", "warm_start_slack_bound_push",
           "warm_start_slack_bound_frac", "warm_start_mult_bound_push"}) {
       options.SetNumericValue(name, settings_.warm_start_bound_push);
     }
   } else {
+    options.SetStringValue("mu_strategy", settings_.cold_start_mu_strategy);
     options.SetStringValue("warm_start_init_point", "no");
     options.SetNumericValue("mu_init", 0.1);
   }
   const auto start = std::chrono::steady_clock::now();
-  Ipopt::SmartPtr<TnlpAdapter> adapter = new TnlpAdapter(problem, point, deadline_seconds);
+  Ipopt::SmartPtr<TnlpAdapter> adapter =
+      new TnlpAdapter(problem, point, solve_settings.deadline_seconds);
   NlpOutcome outcome;
+  // MUMPS keeps module-level state (its load balancing, dmumps_load): two solves in parallel
+  // threads of one process crashed there. Solves in different threads take turns.
+  static std::mutex mumps;
+  std::lock_guard<std::mutex> one_solve_at_a_time(mumps);
   try {
     outcome.status = application_->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(GetRawPtr(adapter)));
   } catch (const std::exception&) {

@@ -29,11 +29,17 @@ class IpoptSession {
  public:
   explicit IpoptSession(const IpoptSettings& settings);
 
-  /// Solves from `point` and overwrites it with Ipopt's final iterate. When the point has
-  /// multipliers it is a warm start with barrier parameter `warm_start_mu`. Stops at
-  /// `deadline_seconds` of steady-clock time (<= 0: no deadline).
-  NlpOutcome solve(const NlpProblem& problem, PrimalDualPoint& point, double deadline_seconds,
-                   double warm_start_mu);
+  /// What may change from one solve to the next.
+  struct SolveSettings {
+    double deadline_seconds = 0.0;  ///< steady-clock time to stop at; <= 0: none
+    double warm_start_mu = 1e-4;    ///< barrier parameter of a warm start
+    double tolerance = 1e-10;
+    double objective_scaling = 1.0;
+  };
+  /// Solves from `point` and overwrites it with Ipopt's final iterate; a point with multipliers
+  /// is a warm start.
+  NlpOutcome solve(const NlpProblem& problem, PrimalDualPoint& point,
+                   const SolveSettings& settings);
 
   static std::string statusName(Ipopt::ApplicationReturnStatus status);
   static bool converged(Ipopt::ApplicationReturnStatus status);

@@ -1,6 +1,7 @@
 #include "fesd_trajopt/core/mpcc_solver.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "fesd_trajopt/core/stopwatch.h"
@@ -24,6 +25,16 @@ std::string statusName(SolveStatus status) {
       return "solver_error";
   }
   return "unknown";
+}
+
+std::string describe(const MpccReport& report, double tolerance) {
+  std::ostringstream message;
+  message << statusName(report.status) << ": " << report.history.size() << " homotopy step(s), "
+          << report.iterations << " Ipopt iterations";
+  if (!report.history.empty()) message << ", last NLP " << report.history.back().ipopt_status;
+  message << ", complementarity residual " << report.complementarity_residual << " (tolerance "
+          << tolerance << ")" << (report.polished ? ", active set polished" : "");
+  return message.str();
 }
 
 void MpccReport::addEffort(const MpccReport& other) {
@@ -55,22 +66,34 @@ SolveStatus failureStatus(Ipopt::ApplicationReturnStatus status) {
   }
 }
 
-}  // namespace
+/// Settings shared by every solve of one call: the deadline, and Ipopt's obj_scaling_factor
+/// (fixed, or the objective at the guess brought to the target size).
+IpoptSession::SolveSettings initialSettings(const HomotopyOptions& options,
+                                            const NlpProblem& problem,
+                                            const std::vector<double>& guess,
+                                            double wall_time_budget) {
+  IpoptSession::SolveSettings settings;
+  const double budget = wall_time_budget >= 0.0 ? wall_time_budget : options.wall_time_budget;
+  // A deadline of exactly now still stops the first solve at its first iteration.
+  if (std::isfinite(budget)) settings.deadline_seconds = steadySeconds() + std::max(budget, 1e-9);
+  const double size = std::fabs(problem.objective(guess.data()));
+  settings.objective_scaling = options.objective_scaling > 0.0 ? options.objective_scaling
+                               : std::isfinite(size) && size > options.objective_scale_target
+                                   ? options.objective_scale_target / size
+                                   : 1.0;
+  return settings;
+}
 
-MpccSolver::MpccSolver(HomotopyOptions options)
-    : options_(std::move(options)), session_(std::make_unique<IpoptSession>(options_.ipopt)) {}
-
-MpccSolver::~MpccSolver() = default;
-
-void MpccSolver::polish(RelaxedMpcc& problem, const PrimalDualPoint& converged, double deadline,
-                        double last_sigma, MpccReport& report) {
-  for (int attempt = 0; attempt < options_.polish_attempts; ++attempt) {
+/// The polishing stage: keeps `report` as it is unless a polished NLP converges.
+void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& problem,
+            const PrimalDualPoint& converged, const IpoptSession::SolveSettings& settings,
+            MpccReport& report) {
+  for (int attempt = 0; attempt < options.polish_attempts; ++attempt) {
     if (!problem.fixActiveSet(converged.x.data(), attempt - 1)) return;
     PrimalDualPoint point = converged;
     // The dropped product rows are inactive from now on: their multipliers are zero.
     for (int row : problem.complementarityRows()) point.constraint_multipliers[row] = 0.0;
-    const NlpOutcome outcome =
-        session_->solve(problem, point, deadline, options_.ipopt.warm_start_mu_factor * last_sigma);
+    const NlpOutcome outcome = session.solve(problem, point, settings);
     problem.releaseActiveSet();
     const double residual = problem.complementarityResidual(point.x.data());
     report.history.push_back({0.0, outcome.iterations, residual, outcome.objective,
@@ -80,6 +103,8 @@ void MpccSolver::polish(RelaxedMpcc& problem, const PrimalDualPoint& converged, 
     report.ipopt_seconds += outcome.wall_seconds - outcome.evaluation_seconds;
     if (IpoptSession::converged(outcome.status) && residual <= report.complementarity_residual) {
       report.solution = point.x;
+      report.multipliers = {point.bound_lower_multipliers, point.bound_upper_multipliers,
+                            point.constraint_multipliers};
       report.objective = outcome.objective;
       report.complementarity_residual = residual;
       report.polished = true;
@@ -89,23 +114,86 @@ void MpccSolver::polish(RelaxedMpcc& problem, const PrimalDualPoint& converged, 
   }
 }
 
-MpccReport MpccSolver::solve(RelaxedMpcc& problem, const std::vector<double>& initial_guess) {
-  Stopwatch stopwatch;
-  MpccReport report;
-  const double deadline =
-      std::isfinite(options_.wall_time_budget) ? steadySeconds() + options_.wall_time_budget : 0.0;
+}  // namespace
+
+MpccSolver::MpccSolver(HomotopyOptions options)
+    : options_(std::move(options)), session_(std::make_unique<IpoptSession>(options_.ipopt)) {}
+
+MpccSolver::~MpccSolver() = default;
+
+MpccReport MpccSolver::solve(RelaxedMpcc& problem, const std::vector<double>& initial_guess,
+                             double sigma_initial, double wall_time_budget) {
   PrimalDualPoint point;
   point.x = initial_guess;
+  return run(problem, point, sigma_initial, wall_time_budget);
+}
+
+MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, double sigma_initial,
+                             double wall_time_budget) {
+  PrimalDualPoint point;
+  point.x = previous.solution;
+  const NlpMultipliers& m = previous.multipliers;
+  const size_t n = point.x.size();
+  if (m.bound_lower.size() == n && m.bound_upper.size() == n &&
+      static_cast<int>(m.constraints.size()) == problem.numConstraints()) {
+    point.bound_lower_multipliers = m.bound_lower;
+    point.bound_upper_multipliers = m.bound_upper;
+    point.constraint_multipliers = m.constraints;
+    point.has_multipliers = true;
+  }
+  // The previous active set first: one smooth NLP when the problem is (nearly) the same.
+  if (options_.polish_active_set && problem.numComplementarities() > 0 &&
+      problem.complementarityResidual(point.x.data()) <= options_.polish_rescue_residual) {
+    Stopwatch stopwatch;
+    MpccReport report;
+    report.solution = point.x;
+    report.complementarity_residual = problem.complementarityResidual(point.x.data());
+    IpoptSession::SolveSettings settings =
+        initialSettings(options_, problem, point.x, wall_time_budget);
+    settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma_initial;
+    settings.tolerance = options_.ipopt.tolerance;
+    polish(*session_, options_, problem, point, settings, report);
+    if (report.polished) {
+      report.status = SolveStatus::kSuccess;
+      report.message = "success: polished from the previous solution's active set, " +
+                       std::to_string(report.iterations) + " Ipopt iterations";
+      report.wall_seconds = stopwatch.wallSeconds();
+      report.cpu_seconds = stopwatch.cpuSeconds();
+      return report;
+    }
+    report.wall_seconds = stopwatch.wallSeconds();
+    report.cpu_seconds = stopwatch.cpuSeconds();
+    MpccReport homotopy =
+        run(problem, point, sigma_initial,
+            wall_time_budget >= 0.0 ? std::max(0.0, wall_time_budget - report.wall_seconds) : -1.0);
+    homotopy.addEffort(report);  // the failed polishing attempts count too
+    homotopy.history.insert(homotopy.history.begin(), report.history.begin(), report.history.end());
+    return homotopy;
+  }
+  return run(problem, point, sigma_initial, wall_time_budget);
+}
+
+MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double sigma_initial,
+                           double wall_time_budget) {
+  Stopwatch stopwatch;
+  MpccReport report;
   problem.setVanishingTermsWeight(options_.vanishing_terms_weight);
+  IpoptSession::SolveSettings settings =
+      initialSettings(options_, problem, point.x, wall_time_budget);
   const bool smooth = problem.numComplementarities() == 0;
   const int steps = smooth ? 1 : options_.max_steps;
-  double sigma = options_.sigma_initial;
-  Ipopt::ApplicationReturnStatus last = Ipopt::Internal_Error;
+  double sigma = sigma_initial > 0.0 ? sigma_initial : options_.sigma_initial;
+  // The converged relaxed NLP with the smallest residual, for a polishing rescue.
+  PrimalDualPoint best;
+  double best_residual = std::numeric_limits<double>::infinity(), best_sigma = sigma;
   for (int step = 0; step < steps; ++step) {
     problem.setRelaxation(sigma);
-    const NlpOutcome outcome =
-        session_->solve(problem, point, deadline, options_.ipopt.warm_start_mu_factor * sigma);
-    last = outcome.status;
+    settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma;
+    // A smooth NLP is the whole problem: solved once, at the final tolerance.
+    settings.tolerance =
+        smooth ? options_.ipopt.tolerance
+               : std::max(options_.ipopt.tolerance, options_.relaxed_tolerance_factor * sigma);
+    const NlpOutcome outcome = session_->solve(problem, point, settings);
     const double residual = problem.complementarityResidual(point.x.data());
     report.history.push_back({sigma, outcome.iterations, residual, outcome.objective,
                               IpoptSession::statusName(outcome.status), outcome.wall_seconds});
@@ -113,9 +201,16 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const std::vector<double>& in
     report.evaluation_seconds += outcome.evaluation_seconds;
     report.ipopt_seconds += outcome.wall_seconds - outcome.evaluation_seconds;
     report.solution = point.x;
+    report.multipliers = {point.bound_lower_multipliers, point.bound_upper_multipliers,
+                          point.constraint_multipliers};
     report.objective = outcome.objective;
     report.complementarity_residual = residual;
     const bool converged = IpoptSession::converged(outcome.status);
+    if (converged && residual < best_residual) {
+      best = point;
+      best_residual = residual;
+      best_sigma = sigma;
+    }
     if (converged && residual <= options_.complementarity_tolerance) {
       report.status = SolveStatus::kSuccess;
       break;
@@ -126,16 +221,20 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const std::vector<double>& in
     sigma *= options_.sigma_reduction;
     if (sigma < options_.minimum_sigma) break;
   }
-  if (report.status == SolveStatus::kSuccess && !smooth && options_.polish_active_set) {
-    polish(problem, point, deadline, sigma, report);
+  if (!smooth && options_.polish_active_set) {
+    settings.tolerance = options_.ipopt.tolerance;
+    if (report.status == SolveStatus::kSuccess) {
+      settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma;
+      polish(*session_, options_, problem, point, settings, report);
+    } else if (report.status != SolveStatus::kTimeout &&
+               best_residual <= options_.polish_rescue_residual) {
+      settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * best_sigma;
+      report.complementarity_residual = best_residual;
+      polish(*session_, options_, problem, best, settings, report);
+      if (report.polished) report.status = SolveStatus::kSuccess;
+    }
   }
-  std::ostringstream message;
-  message << statusName(report.status) << ": " << report.history.size() << " homotopy step(s), "
-          << report.iterations << " Ipopt iterations, last NLP " << IpoptSession::statusName(last)
-          << ", complementarity residual " << report.complementarity_residual << " (tolerance "
-          << options_.complementarity_tolerance << ")"
-          << (report.polished ? ", active set polished" : "");
-  report.message = message.str();
+  report.message = describe(report, options_.complementarity_tolerance);
   report.wall_seconds = stopwatch.wallSeconds();
   report.cpu_seconds = stopwatch.cpuSeconds();
   return report;

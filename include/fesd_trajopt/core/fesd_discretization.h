@@ -53,6 +53,10 @@ class FesdDiscretization {
   /// every stage state shifted by (start - old start), c(x) re-evaluated, lambda and steps kept.
   /// A simulation step's guess from the step before (smooth motion repeats its increments).
   std::vector<double> translatedGuess(const std::vector<double>& previous_solution) const;
+  /// A solution of a discretisation of the same OCP with the same grid sizes (e.g. the
+  /// standard method's) as a guess for this one: shared variables copied, auxiliaries completed.
+  std::vector<double> adoptedGuess(const FesdDiscretization& other,
+                                   const std::vector<double>& solution) const;
   /// Sets the step-equilibration auxiliaries (pi, max, nu, OR) of x consistently with its
   /// s and lambda values, so a guess starts (nearly) feasible for them.
   void completeAuxiliaries(std::vector<double>& x) const;
@@ -113,6 +117,7 @@ class FesdDiscretization {
   std::vector<int> steps_;                       ///< per element (global)
   std::vector<std::vector<StagePoint>> stages_;  ///< per element, per stage
   std::vector<EquilibrationAuxiliaries> equilibration_;
+  int core_variables_ = 0;  ///< start, controls, steps, stage points: the same in any method
   int auxiliary_variables_begin_ = 0, auxiliary_variables_end_ = 0;  ///< [begin, end)
   int auxiliary_rows_begin_ = 0, auxiliary_rows_end_ = 0;
 };

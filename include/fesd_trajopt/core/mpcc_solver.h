@@ -16,9 +16,13 @@ struct IpoptSettings {
   double acceptable_tolerance = 1e-8;
   int max_iterations = 500;  ///< per relaxed NLP
   int print_level = 0;
-  /// "monotone" needs fewer linear solves per iteration than "adaptive" (whose quality function
-  /// solves several systems), which matters because every MUMPS call has a fixed cost.
+  /// Barrier strategy of warm-started solves: "monotone" needs fewer linear solves per iteration
+  /// than "adaptive" (whose quality function solves several systems), and every MUMPS call has
+  /// a fixed cost.
   std::string mu_strategy = "monotone";
+  /// Barrier strategy of a cold start (the first relaxed NLP): "adaptive" needed about 40 %
+  /// fewer iterations on the manipulation OCP.
+  std::string cold_start_mu_strategy = "adaptive";
   std::string linear_solver = "mumps";
   /// A warm-started homotopy step starts at the previous solution with its multipliers, pushed
   /// off the bounds by only this much, and with Ipopt's mu_init = warm_start_mu_factor * sigma:
@@ -42,6 +46,13 @@ struct HomotopyOptions {
   /// Weight of the objective terms that vanish with sigma (FESD's step regulariser); 0 drops
   /// them. A different weight gives the homotopy a different path.
   double vanishing_terms_weight = 1.0;
+  /// Inexact homotopy: a relaxed NLP is solved to Ipopt tolerance
+  /// max(ipopt.tolerance, relaxed_tolerance_factor * sigma); loose relaxations only guide.
+  double relaxed_tolerance_factor = 1e-2;
+  /// Objective scaling: > 0 is Ipopt's obj_scaling_factor; 0 (default) scales so that the
+  /// objective at the initial guess is at most objective_scale_target in size.
+  double objective_scaling = 0.0;
+  double objective_scale_target = 1e3;
   /// A relaxed NLP that ends without converging does not abort the homotopy: the next, tighter
   /// one starts from its iterate (as the reference implementation does).
   bool continue_after_failure = true;
@@ -55,6 +66,10 @@ struct HomotopyOptions {
   /// is kept.
   bool polish_active_set = true;
   int polish_attempts = 3;
+  /// A homotopy that fails later still gets a polishing attempt from its best converged
+  /// relaxed NLP, if that one's complementarity residual is at most this: polishing needs the
+  /// right active set, not a tiny sigma.
+  double polish_rescue_residual = 1e-4;
   IpoptSettings ipopt;
 };
 
@@ -78,11 +93,18 @@ struct HomotopyStep {
   double wall_seconds;
 };
 
+/// Multipliers of an NLP solution (bounds and constraints), for warm starts.
+struct NlpMultipliers {
+  std::vector<double> bound_lower, bound_upper, constraints;
+  bool empty() const { return constraints.empty() && bound_lower.empty(); }
+};
+
 struct MpccReport {
   SolveStatus status = SolveStatus::kSolverError;
   std::string message;
   std::vector<HomotopyStep> history;
   std::vector<double> solution;  ///< the last accepted iterate
+  NlpMultipliers multipliers;    ///< its multipliers
   double objective = 0.0;
   double complementarity_residual = 0.0;
   int iterations = 0;     ///< Ipopt iterations over all homotopy steps
@@ -96,12 +118,16 @@ struct MpccReport {
   void accumulate(const MpccReport& other);  ///< addEffort, and the worse residual
 };
 
+/// One line: status, homotopy steps, iterations, last NLP, residual, polishing.
+std::string describe(const MpccReport& report, double tolerance);
+
 class IpoptSession;
 struct PrimalDualPoint;
 
 /// Solves a RelaxedMpcc by the homotopy, each NLP by Ipopt with exact sparse derivatives,
 /// warm-started from the previous one. A solver keeps one Ipopt application and can be reused
-/// for many problems; it is not thread-safe (use one per thread).
+/// for many problems; it is not thread-safe (use one per thread). Solvers in different threads
+/// run their Ipopt solves one at a time: MUMPS is not thread-safe.
 class MpccSolver {
  public:
   explicit MpccSolver(HomotopyOptions options = {});
@@ -110,14 +136,19 @@ class MpccSolver {
   MpccSolver& operator=(const MpccSolver&) = delete;
 
   const HomotopyOptions& options() const { return options_; }
-  /// Solves from the initial guess. With zero complementarity constraints the problem is a
-  /// smooth NLP and is solved once, without homotopy.
-  MpccReport solve(RelaxedMpcc& problem, const std::vector<double>& initial_guess);
+  /// Solves from the initial guess, the homotopy starting at `sigma_initial` (default: the
+  /// options'). With zero complementarity constraints the problem is a smooth NLP and is solved
+  /// once, without homotopy.
+  /// `wall_time_budget` (seconds, if >= 0) replaces the options' budget for this call.
+  MpccReport solve(RelaxedMpcc& problem, const std::vector<double>& initial_guess,
+                   double sigma_initial = -1.0, double wall_time_budget = -1.0);
+  /// A warm start from a previous solution of the same problem, multipliers included.
+  MpccReport solve(RelaxedMpcc& problem, const MpccReport& previous, double sigma_initial,
+                   double wall_time_budget = -1.0);
 
  private:
-  /// The polishing stage: keeps `report` as it is unless the polished NLP converges.
-  void polish(RelaxedMpcc& problem, const PrimalDualPoint& converged, double deadline,
-              double last_sigma, MpccReport& report);
+  MpccReport run(RelaxedMpcc& problem, PrimalDualPoint point, double sigma_initial,
+                 double wall_time_budget);
 
   HomotopyOptions options_;
   std::unique_ptr<IpoptSession> session_;

@@ -1,0 +1,74 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fesd_trajopt/core/fesd_discretization.h"
+#include "fesd_trajopt/core/fesd_integrator.h"
+#include "fesd_trajopt/core/mpcc_solver.h"
+
+namespace fesd {
+
+/// The discretisation defaults for optimal control: as for simulation, but steps no shorter
+/// than h0 / 2. With gamma_h = 1 the optimiser collapsed elements to h = 0 around degenerate
+/// (weakly active) switches and so bought grid freedom to exploit discretisation error.
+inline DiscretizationOptions optimalControlDiscretization() {
+  DiscretizationOptions options;
+  options.step_bound = 0.5;
+  return options;
+}
+
+struct OcpOptions {
+  DiscretizationOptions discretization = optimalControlDiscretization();
+  HomotopyOptions homotopy;  ///< the notes' defaults: sigma0 = 1, kappa = 0.1, tolerance 1e-9
+  /// With FESD, the homotopy first runs on the fixed grid (the standard discretisation: no
+  /// cross-complementarity, no step equilibration, h = h0) while sigma > this, then continues
+  /// with FESD from that point. The loose relaxations with free steps were the slowest and least
+  /// reliable NLPs of all (see README); 0 runs FESD from the start.
+  double fixed_grid_until_sigma = 1e-2;
+  /// A warm start (solve(previous)) begins the homotopy at this sigma instead of sigma0, so the
+  /// previous solution is not relaxed away.
+  double warm_start_sigma = 1e-4;
+  double activity_tolerance = kDefaultActivityTolerance;
+};
+
+struct OcpSolution {
+  SolveStatus status = SolveStatus::kSolverError;
+  std::string message;
+  /// Per element: interval, start time, h, stage states, lambda, c; per interval: u; switches.
+  Trajectory trajectory;
+  MpccReport report;  ///< homotopy history, iterations, times, objective, residual
+};
+
+/// Optimal control of a DCS with FESD: builds the discretisation once and solves it, from the
+/// trivial guess (every state at x0, controls 0 within their bounds) or from a previous
+/// solution of the same problem (a warm start).
+class OcpSolver {
+ public:
+  OcpSolver(OcpDefinition ocp, OcpOptions options);
+
+  OcpSolution solve();
+  /// Warm start: `previous` must come from a solver with the same discretisation sizes.
+  OcpSolution solve(const OcpSolution& previous);
+
+  const FesdDiscretization& discretization() const { return *discretization_; }
+  const OcpOptions& options() const { return options_; }
+
+ private:
+  /// The solution read from `report`, whose point belongs to `source`.
+  OcpSolution finish(MpccReport report, const FesdDiscretization& source) const;
+
+  OcpOptions options_;
+  std::unique_ptr<FesdDiscretization> discretization_;
+  std::unique_ptr<FesdDiscretization> fixed_grid_;  ///< the standard method on the same grid
+  MpccSolver solver_, fixed_grid_solver_;
+};
+
+/// Re-simulates a solution's controls with the FESD integrator (one step per control interval,
+/// the given, typically finer, discretisation) and returns the distance between the simulated
+/// terminal state and the OCP's; infinity when the simulation fails.
+double resimulationError(const OcpDefinition& ocp, const OcpSolution& solution,
+                         const SimulationOptions& fine);
+
+}  // namespace fesd

@@ -1,0 +1,62 @@
+#!/usr/bin/python3
+"""Calls ~solve_trajectory of a running fesd_trajopt node and prints a summary.
+
+The Python usage example: an empty request solves the default scene; see --help for a few
+overrides. Usage: rosrun fesd_trajopt demo_client.py [--intervals N] [--elements N] [--verify]
+"""
+import argparse
+import sys
+
+import rospy
+from fesd_trajopt.msg import SwitchEvent
+from fesd_trajopt.srv import SolveTrajectory, SolveTrajectoryRequest
+
+STATUS = {0: "SUCCESS", 1: "MAX_ITERATIONS", 2: "INFEASIBLE", 3: "TIMEOUT",
+          4: "COMPLEMENTARITY_NOT_MET", 5: "SOLVER_ERROR", 6: "INVALID_REQUEST"}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--service", default="/fesd_trajopt/solve_trajectory")
+    parser.add_argument("--intervals", type=int, help="control intervals (default: configured)")
+    parser.add_argument("--elements", type=int, help="finite elements per interval")
+    parser.add_argument("--verify", action="store_true", help="re-simulate on a finer grid")
+    args = parser.parse_args(rospy.myargv()[1:])
+    rospy.init_node("fesd_trajopt_demo_client", anonymous=True)
+    rospy.wait_for_service(args.service, timeout=60.0)
+    solve = rospy.ServiceProxy(args.service, SolveTrajectory)
+    request = SolveTrajectoryRequest()
+    if args.intervals:
+        request.has_num_intervals, request.num_intervals = True, args.intervals
+    if args.elements:
+        request.has_num_elements, request.num_elements = True, args.elements
+    request.verify = args.verify
+    started = rospy.Time.now()
+    response = solve(request)
+    round_trip = (rospy.Time.now() - started).to_sec()
+    solution = response.solution
+    print("fesd_trajopt demo: %s (%d)" % (STATUS.get(response.status, "?"), response.status))
+    print("  %s" % response.message)
+    for body in solution.bodies:
+        start, end = body.positions[0], body.positions[-1]
+        print("  %-12s %-8s (%7.3f, %7.3f) -> (%7.3f, %7.3f)" % (
+            body.name, "actuated" if body.actuated else "passive", start.x, start.y, end.x, end.y))
+    for event in solution.switches:
+        kind = "contact" if event.kind == SwitchEvent.CONTACT else "release"
+        print("  %-7s %s/%s at t = %.4f" % (kind, event.first, event.second, event.time))
+    for pair in solution.pruned_pairs:
+        print("  pruned  %s/%s: %s" % (pair.first, pair.second, pair.reason))
+    stats = solution.statistics
+    print("  %d Ipopt iterations in %d homotopy steps, residual %.1e, objective %.6g" % (
+        stats.ipopt_iterations, stats.homotopy_steps, stats.complementarity_residual,
+        stats.objective))
+    print("  solve %.2f s (Ipopt %.2f s, evaluations %.2f s); round trip %.2f s" % (
+        stats.wall_time, stats.ipopt_time, stats.evaluation_time, round_trip))
+    if solution.verified:
+        print("  re-simulated on a finer grid: end state deviates by %.3g" %
+              solution.verification_error)
+    return 0 if response.status == 0 else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,84 @@
+#include "fesd_trajopt/core/ocp_solver.h"
+
+#include <limits>
+#include <stdexcept>
+
+namespace fesd {
+
+namespace {
+
+HomotopyOptions fixedGridHomotopy(const OcpOptions& options) {
+  HomotopyOptions stage = options.homotopy;
+  stage.minimum_sigma = options.fixed_grid_until_sigma;
+  stage.polish_active_set = false;
+  return stage;
+}
+
+}  // namespace
+
+OcpSolver::OcpSolver(OcpDefinition ocp, OcpOptions options)
+    : options_(std::move(options)),
+      discretization_(std::make_unique<FesdDiscretization>(ocp, options_.discretization)),
+      solver_(options_.homotopy),
+      fixed_grid_solver_(fixedGridHomotopy(options_)) {
+  if (discretization_->stepsAreFree() && options_.fixed_grid_until_sigma > 0.0) {
+    DiscretizationOptions fixed = options_.discretization;
+    fixed.switch_detection = false;
+    fixed_grid_ = std::make_unique<FesdDiscretization>(std::move(ocp), fixed);
+  }
+}
+
+OcpSolution OcpSolver::solve() {
+  if (!fixed_grid_) {
+    return finish(solver_.solve(discretization_->nlp(), discretization_->constantGuess()),
+                  *discretization_);
+  }
+  MpccReport fixed = fixed_grid_solver_.solve(fixed_grid_->nlp(), fixed_grid_->constantGuess());
+  const double remaining = options_.homotopy.wall_time_budget - fixed.wall_seconds;
+  if (fixed.status == SolveStatus::kTimeout || fixed.history.empty()) {
+    return finish(std::move(fixed), *fixed_grid_);
+  }
+  const double sigma = fixed.history.back().sigma * options_.homotopy.sigma_reduction;
+  OcpSolution solution =
+      finish(solver_.solve(discretization_->nlp(),
+                           discretization_->adoptedGuess(*fixed_grid_, fixed.solution), sigma,
+                           std::max(0.0, remaining)),
+             *discretization_);
+  // One homotopy in two stages: report it as such.
+  solution.report.history.insert(solution.report.history.begin(), fixed.history.begin(),
+                                 fixed.history.end());
+  solution.report.addEffort(fixed);
+  solution.message = solution.report.message =
+      describe(solution.report, options_.homotopy.complementarity_tolerance) + " (" +
+      std::to_string(fixed.history.size()) + " step(s) on the fixed grid)";
+  return solution;
+}
+
+OcpSolution OcpSolver::solve(const OcpSolution& previous) {
+  if (static_cast<int>(previous.report.solution.size()) != discretization_->nlp().numVariables()) {
+    throw std::invalid_argument("OcpSolver: the warm start comes from a different discretisation");
+  }
+  return finish(solver_.solve(discretization_->nlp(), previous.report, options_.warm_start_sigma),
+                *discretization_);
+}
+
+OcpSolution OcpSolver::finish(MpccReport report, const FesdDiscretization& source) const {
+  OcpSolution solution;
+  solution.report = std::move(report);
+  solution.status = solution.report.status;
+  solution.message = solution.report.message;
+  solution.trajectory =
+      source.extract(solution.report.solution.data(), 0.0, options_.activity_tolerance);
+  return solution;
+}
+
+double resimulationError(const OcpDefinition& ocp, const OcpSolution& solution,
+                         const SimulationOptions& fine) {
+  FesdIntegrator integrator(ocp.model, fine);
+  const SimulationResult result = integrator.simulate(
+      ocp.initial_state, ocp.horizon, ocp.num_intervals, solution.trajectory.controls);
+  if (result.status != SolveStatus::kSuccess) return std::numeric_limits<double>::infinity();
+  return (result.trajectory.finalState() - solution.trajectory.finalState()).norm();
+}
+
+}  // namespace fesd

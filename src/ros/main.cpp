@@ -1,0 +1,20 @@
+// fesd_trajopt_node: trajectory optimisation with FESD as a ROS service.
+#include <ros/ros.h>
+
+#include "trajopt_node.h"
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "fesd_trajopt");
+  ros::NodeHandle node, private_node("~");
+  try {
+    fesd_ros::TrajoptNode trajopt(node, private_node);
+    // Requests are served concurrently; a solve slot limit bounds the parallel solves.
+    ros::AsyncSpinner spinner(4);
+    spinner.start();
+    ros::waitForShutdown();
+  } catch (const std::exception& error) {
+    ROS_FATAL_STREAM("fesd_trajopt: " << error.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,95 @@
+#include "node_config.h"
+
+#include <stdexcept>
+
+#include <XmlRpcValue.h>
+
+namespace fesd_ros {
+namespace {
+
+double number(const XmlRpc::XmlRpcValue& value, const std::string& what) {
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeDouble) return static_cast<double>(value);
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeInt) return static_cast<int>(value);
+  throw std::runtime_error("parameter " + what + " must be a number");
+}
+
+BodyConfig bodyConfig(XmlRpc::XmlRpcValue& value, const std::string& name) {
+  const std::string where = "bodies/" + name;
+  if (value.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+    throw std::runtime_error("parameter " + where + " must be a map");
+  }
+  BodyConfig config;
+  for (auto& [key, item] : value) {
+    if (key == "actuated") {
+      if (item.getType() != XmlRpc::XmlRpcValue::TypeBoolean) {
+        throw std::runtime_error("parameter " + where + "/actuated must be true or false");
+      }
+      config.actuated = static_cast<bool>(item);
+    } else if (key == "max_speed") {
+      config.max_speed = number(item, where + "/max_speed");
+    } else if (key == "target_weight") {
+      config.target_weight = number(item, where + "/target_weight");
+    } else if (key == "target") {
+      if (item.getType() != XmlRpc::XmlRpcValue::TypeArray) {
+        throw std::runtime_error("parameter " + where + "/target must be a list");
+      }
+      for (int i = 0; i < item.size(); ++i) config.target.push_back(number(item[i], where));
+    } else if (key == "workspace") {
+      if (item.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+        throw std::runtime_error("parameter " + where + "/workspace must be a map");
+      }
+      for (auto& [bound, limit] : item) {
+        static const char* known[] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
+        if (std::find(std::begin(known), std::end(known), bound) == std::end(known)) {
+          throw std::runtime_error("parameter " + where + "/workspace/" + bound +
+                                   " is not one of x_min, x_max, y_min, y_max, z_min, z_max");
+        }
+        config.workspace[bound] = number(limit, where + "/workspace/" + bound);
+      }
+    } else {
+      throw std::runtime_error("unknown parameter " + where + "/" + key);
+    }
+  }
+  return config;
+}
+
+}  // namespace
+
+NodeConfig loadNodeConfig(const ros::NodeHandle& node) {
+  NodeConfig c;
+  node.param("frame_id", c.frame_id, c.frame_id);
+  node.param("planar", c.planar, c.planar);
+  node.param("horizon", c.horizon, c.horizon);
+  node.param("num_intervals", c.num_intervals, c.num_intervals);
+  node.param("control_weight", c.control_weight, c.control_weight);
+  node.param("num_elements", c.num_elements, c.num_elements);
+  node.param("num_stages", c.num_stages, c.num_stages);
+  std::string method = "fesd";
+  node.param("method", method, method);
+  if (method != "fesd" && method != "standard") {
+    throw std::runtime_error("parameter method must be fesd or standard, got '" + method + "'");
+  }
+  c.fesd = method == "fesd";
+  node.param("complementarity_tolerance", c.complementarity_tolerance, c.complementarity_tolerance);
+  node.param("wall_time_budget", c.wall_time_budget, c.wall_time_budget);
+  node.param("verification/num_stages", c.verification_stages, c.verification_stages);
+  node.param("verification/num_elements", c.verification_elements, c.verification_elements);
+  node.param("limits/max_bodies", c.limits.max_bodies, c.limits.max_bodies);
+  node.param("limits/max_obstacles", c.limits.max_obstacles, c.limits.max_obstacles);
+  node.param("limits/max_walls", c.limits.max_walls, c.limits.max_walls);
+  node.param("limits/max_intervals", c.limits.max_intervals, c.limits.max_intervals);
+  node.param("limits/max_elements", c.limits.max_elements, c.limits.max_elements);
+  node.param("limits/max_stages", c.limits.max_stages, c.limits.max_stages);
+  node.param("limits/max_horizon", c.limits.max_horizon, c.limits.max_horizon);
+  node.param("scene_urdf", c.scene_urdf, std::string());
+  XmlRpc::XmlRpcValue bodies;
+  if (node.getParam("bodies", bodies)) {
+    if (bodies.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+      throw std::runtime_error("parameter bodies must be a map from link names to settings");
+    }
+    for (auto& [name, value] : bodies) c.bodies[name] = bodyConfig(value, name);
+  }
+  return c;
+}
+
+}  // namespace fesd_ros

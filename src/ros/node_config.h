@@ -1,0 +1,43 @@
+#pragma once
+
+#include <map>
+#include <string>
+
+#include <ros/node_handle.h>
+
+#include "fesd_trajopt/core/scene_task.h"
+
+namespace fesd_ros {
+
+/// Configured defaults of one body (by URDF link name).
+struct BodyConfig {
+  bool actuated = false;
+  double max_speed = 10.0;
+  std::vector<double> target;
+  double target_weight = 0.0;
+  std::map<std::string, double> workspace;  ///< x_min, x_max, y_min, ...
+};
+
+/// The node's private parameters (config/fesd_trajopt.yaml).
+struct NodeConfig {
+  std::string frame_id = "world";
+  bool planar = true;
+  double horizon = 5.0;
+  int num_intervals = 40;
+  double control_weight = 1e-4;
+  int num_elements = 3;
+  int num_stages = 2;
+  bool fesd = true;
+  double complementarity_tolerance = 1e-9;
+  double wall_time_budget = 120.0;
+  int verification_stages = 3;
+  int verification_elements = 6;
+  fesd::TaskLimits limits;
+  std::map<std::string, BodyConfig> bodies;
+  std::string scene_urdf;  ///< ~scene_urdf: the default scene
+};
+
+/// Reads the private parameters; throws std::runtime_error naming a malformed one.
+NodeConfig loadNodeConfig(const ros::NodeHandle& private_node);
+
+}  // namespace fesd_ros

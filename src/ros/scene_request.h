@@ -1,0 +1,49 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <fesd_trajopt/BodySpec.h>
+#include <fesd_trajopt/ContactPair.h>
+#include <fesd_trajopt/Obstacle.h>
+#include <fesd_trajopt/Wall.h>
+#include <ros/node_handle.h>
+
+#include "fesd_trajopt/core/scene_task.h"
+#include "node_config.h"
+
+namespace fesd_ros {
+
+/// The scene part that SolveTrajectory and Simulate requests share.
+struct SceneFields {
+  std::string urdf, urdf_param;
+  bool planar_override = false, planar = true;
+  std::vector<fesd_trajopt::BodySpec> bodies;
+  std::vector<fesd_trajopt::Obstacle> obstacles;
+  std::vector<fesd_trajopt::Wall> walls;
+  std::vector<fesd_trajopt::ContactPair> allowed_pairs;
+};
+
+template <class Request>
+SceneFields sceneFields(const Request& request) {
+  return {request.urdf,        request.urdf_param,   request.planar_override != 0,
+          request.planar != 0, request.bodies,       request.obstacles,
+          request.walls,       request.allowed_pairs};
+}
+
+/// A task built from the configuration, the URDF and a request's scene fields.
+struct TaskBuild {
+  fesd::SceneTask task;
+  std::string error;               ///< non-empty: the request is invalid, and why
+  std::vector<std::string> notes;  ///< e.g. URDF links that were ignored
+};
+
+/// The configured defaults, the request's scene source and overrides: the scene task (horizon
+/// and intervals from the configuration; the caller applies the request's).
+TaskBuild buildTask(const NodeConfig& config, const SceneFields& request,
+                    const ros::NodeHandle& node);
+
+/// The name of a pair's second member (body, obstacle or wall).
+std::string otherName(const fesd::DiscScene& scene, const fesd::ContactPair& pair);
+
+}  // namespace fesd_ros

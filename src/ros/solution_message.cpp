@@ -1,0 +1,241 @@
+#include "solution_message.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "scene_request.h"
+
+namespace fesd_ros {
+namespace {
+
+// Planar vectors are written with z = 0.
+template <class XyzMessage>
+XyzMessage xyz(const Eigen::VectorXd& v) {
+  XyzMessage result;
+  result.x = v(0);
+  result.y = v(1);
+  result.z = v.size() > 2 ? v(2) : 0.0;
+  return result;
+}
+
+geometry_msgs::Point point(const Eigen::VectorXd& p) {
+  return xyz<geometry_msgs::Point>(p);
+}
+
+fesd_trajopt::ContactPair pairMessage(const fesd::DiscScene& scene,
+                                      const fesd::PairDecision& decision) {
+  fesd_trajopt::ContactPair message;
+  message.first = scene.bodies()[decision.pair.body].name;
+  message.second = otherName(scene, decision.pair);
+  message.reason = decision.reason;
+  return message;
+}
+
+std_msgs::ColorRGBA color(double r, double g, double b, double a) {
+  std_msgs::ColorRGBA c;
+  c.r = r;
+  c.g = g;
+  c.b = b;
+  c.a = a;
+  return c;
+}
+
+}  // namespace
+
+uint8_t statusCode(fesd::SolveStatus status) {
+  switch (status) {
+    case fesd::SolveStatus::kSuccess:
+      return 0;
+    case fesd::SolveStatus::kMaxIterations:
+      return 1;
+    case fesd::SolveStatus::kInfeasible:
+      return 2;
+    case fesd::SolveStatus::kTimeout:
+      return 3;
+    case fesd::SolveStatus::kComplementarityNotMet:
+      return 4;
+    case fesd::SolveStatus::kSolverError:
+      return 5;
+  }
+  return 5;
+}
+
+void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& report,
+                fesd_trajopt::Solution& solution) {
+  solution.status = statusCode(report.status);
+  solution.message = report.message;
+  solution.times = trajectory.times;
+  for (const fesd::ElementValues& element : trajectory.elements) {
+    solution.step_lengths.push_back(element.step);
+  }
+  solution.control_times = trajectory.interval_times;
+  solution.state_dimension = trajectory.states.empty() ? 0 : trajectory.states.front().size();
+  for (const Eigen::VectorXd& x : trajectory.states) {
+    solution.states.insert(solution.states.end(), x.data(), x.data() + x.size());
+  }
+  fesd_trajopt::SolverStatistics& s = solution.statistics;
+  s.homotopy_steps = report.history.size();
+  s.ipopt_iterations = report.iterations;
+  s.complementarity_residual = report.complementarity_residual;
+  s.objective = report.objective;
+  s.wall_time = report.wall_seconds;
+  s.cpu_time = report.cpu_seconds;
+  s.ipopt_time = report.ipopt_seconds;
+  s.evaluation_time = report.evaluation_seconds;
+  s.polished = report.polished;
+  for (const fesd::HomotopyStep& step : report.history) {
+    s.sigma.push_back(step.sigma);
+    s.iterations.push_back(step.iterations);
+  }
+}
+
+fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
+                                     const std::vector<fesd::PairDecision>& decisions,
+                                     const fesd::Trajectory& trajectory,
+                                     const fesd::MpccReport& report) {
+  const fesd::DiscScene& scene = task.scene;
+  const int dim = scene.dimension();
+  fesd_trajopt::Solution solution;
+  fillCommon(trajectory, report, solution);
+  for (int b = 0; b < static_cast<int>(scene.bodies().size()); ++b) {
+    fesd_trajopt::BodyTrajectory body;
+    body.name = scene.bodies()[b].name;
+    body.radius = scene.bodies()[b].radius;
+    body.actuated = scene.bodies()[b].actuated;
+    for (const Eigen::VectorXd& x : trajectory.states) {
+      body.positions.push_back(point(x.segment(scene.stateIndex(b), dim)));
+    }
+    if (body.actuated) {
+      for (const Eigen::VectorXd& u : trajectory.controls) {
+        body.controls.push_back(xyz<geometry_msgs::Vector3>(u.segment(scene.controlIndex(b), dim)));
+      }
+    }
+    solution.bodies.push_back(body);
+  }
+  std::vector<fesd::ContactPair> modelled;
+  for (const fesd::PairDecision& decision : decisions) {
+    (decision.modelled ? solution.modeled_pairs : solution.pruned_pairs)
+        .push_back(pairMessage(scene, decision));
+    if (decision.modelled) modelled.push_back(decision.pair);
+  }
+  for (const fesd::SwitchEvent& event : trajectory.switches) {
+    fesd_trajopt::SwitchEvent message;
+    message.time = event.time;
+    message.first = scene.bodies()[modelled[event.constraint].body].name;
+    message.second = otherName(scene, modelled[event.constraint]);
+    message.kind = event.kind == fesd::SwitchEvent::Kind::kContact
+                       ? fesd_trajopt::SwitchEvent::CONTACT
+                       : fesd_trajopt::SwitchEvent::RELEASE;
+    solution.switches.push_back(message);
+  }
+  return solution;
+}
+
+visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
+                                             const fesd_trajopt::Solution& solution,
+                                             const std::string& frame_id) {
+  const fesd::DiscScene& scene = task.scene;
+  const bool planar = scene.dimension() == 2;
+  visualization_msgs::MarkerArray markers;
+  visualization_msgs::Marker clear;
+  clear.header.frame_id = frame_id;
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  markers.markers.push_back(clear);
+  int id = 0;
+  auto marker = [&](const std::string& ns, int type) {
+    visualization_msgs::Marker m;
+    m.header.frame_id = frame_id;
+    m.header.stamp = solution.header.stamp;
+    m.ns = ns;
+    m.id = id++;
+    m.type = type;
+    m.action = visualization_msgs::Marker::ADD;
+    m.pose.orientation.w = 1.0;
+    return m;
+  };
+  auto disc = [&](const std::string& ns, const geometry_msgs::Point& at, double radius,
+                  const std_msgs::ColorRGBA& c) {
+    visualization_msgs::Marker m = marker(
+        ns, planar ? visualization_msgs::Marker::CYLINDER : visualization_msgs::Marker::SPHERE);
+    m.pose.position = at;
+    m.scale.x = m.scale.y = 2.0 * radius;
+    m.scale.z = planar ? 0.1 : 2.0 * radius;
+    m.color = c;
+    markers.markers.push_back(m);
+  };
+  auto body_color = [&](size_t b, double alpha) {
+    return scene.bodies()[b].actuated ? color(0.2, 0.45, 0.85, alpha)
+                                      : color(0.95, 0.55, 0.1, alpha);
+  };
+  for (size_t b = 0; b < solution.bodies.size(); ++b) {
+    const fesd_trajopt::BodyTrajectory& body = solution.bodies[b];
+    if (body.positions.empty()) continue;
+    disc("bodies_start", body.positions.front(), body.radius, body_color(b, 1.0));
+    disc("bodies_final", body.positions.back(), body.radius, body_color(b, 0.6));
+    if (task.bodies[b].target.size() && task.bodies[b].target_weight > 0.0) {
+      disc("targets", point(task.bodies[b].target), body.radius, color(0.2, 0.8, 0.3, 0.3));
+    }
+    visualization_msgs::Marker path = marker("paths", visualization_msgs::Marker::LINE_STRIP);
+    path.points = body.positions;
+    path.scale.x = 0.08;
+    path.color = body_color(b, 1.0);
+    markers.markers.push_back(path);
+  }
+  for (const fesd_trajopt::SwitchEvent& event : solution.switches) {
+    // The configuration at the switch: the element boundary at that time.
+    size_t k = 0;
+    while (k + 1 < solution.times.size() && solution.times[k] < event.time - 1e-12) ++k;
+    geometry_msgs::Point label_at;
+    int touching = 0;
+    for (size_t b = 0; b < solution.bodies.size(); ++b) {
+      const geometry_msgs::Point& p = solution.bodies[b].positions[k];
+      disc("switch_configurations", p, solution.bodies[b].radius, body_color(b, 0.15));
+      if (solution.bodies[b].name == event.first || solution.bodies[b].name == event.second) {
+        label_at.x += p.x;
+        label_at.y += p.y;
+        label_at.z += p.z;
+        ++touching;
+      }
+    }
+    visualization_msgs::Marker label =
+        marker("switch_labels", visualization_msgs::Marker::TEXT_VIEW_FACING);
+    label.pose.position.x = label_at.x / std::max(touching, 1);
+    label.pose.position.y = label_at.y / std::max(touching, 1);
+    label.pose.position.z = label_at.z / std::max(touching, 1) + 0.5;
+    char text[160];
+    std::snprintf(text, sizeof(text), "%s %s/%s t=%.3f",
+                  event.kind == fesd_trajopt::SwitchEvent::CONTACT ? "contact" : "release",
+                  event.first.c_str(), event.second.c_str(), event.time);
+    label.text = text;
+    label.scale.z = 0.6;
+    label.color = color(1.0, 1.0, 1.0, 1.0);
+    markers.markers.push_back(label);
+  }
+  for (const fesd::SceneObstacle& o : scene.obstacles()) {
+    disc("obstacles", point(o.position), o.radius, color(0.5, 0.5, 0.5, 1.0));
+  }
+  for (const fesd::SceneWall& w : scene.walls()) {
+    // A thin plate through the wall's closest point to the origin, its x axis along the normal.
+    visualization_msgs::Marker plate = marker("walls", visualization_msgs::Marker::CUBE);
+    const Eigen::Vector3d normal =
+        planar ? Eigen::Vector3d(w.normal(0), w.normal(1), 0.0) : Eigen::Vector3d(w.normal);
+    const Eigen::Vector3d at = normal * w.offset;
+    plate.pose.position.x = at.x();
+    plate.pose.position.y = at.y();
+    plate.pose.position.z = at.z();
+    const Eigen::Quaterniond q =
+        Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitX(), normal);
+    plate.pose.orientation.x = q.x();
+    plate.pose.orientation.y = q.y();
+    plate.pose.orientation.z = q.z();
+    plate.pose.orientation.w = q.w();
+    plate.scale.x = 0.1;
+    plate.scale.y = 60.0;
+    plate.scale.z = planar ? 0.2 : 60.0;
+    plate.color = color(0.6, 0.2, 0.2, 0.8);
+    markers.markers.push_back(plate);
+  }
+  return markers;
+}
+
+}  // namespace fesd_ros

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <fesd_trajopt/Solution.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "fesd_trajopt/core/mpcc_solver.h"
+#include "fesd_trajopt/core/scene_task.h"
+#include "fesd_trajopt/core/trajectory.h"
+
+namespace fesd_ros {
+
+/// Status constants shared by both services (SolveTrajectory/Simulate responses).
+uint8_t statusCode(fesd::SolveStatus status);
+constexpr uint8_t kInvalidRequest = 6;
+
+/// The Solution message of a scene trajectory: times, each body's positions and controls, the
+/// full state, switches (named by the modelled pairs), statistics and pair decisions.
+fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
+                                     const std::vector<fesd::PairDecision>& decisions,
+                                     const fesd::Trajectory& trajectory,
+                                     const fesd::MpccReport& report);
+
+/// The parts every solution has: times, steps, full states, statistics.
+void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& report,
+                fesd_trajopt::Solution& solution);
+
+/// rviz markers of a scene solution, one namespace per layer (bodies_start, bodies_final,
+/// targets, paths, switch_configurations, switch_labels, obstacles, walls), preceded by a
+/// DELETEALL.
+visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
+                                             const fesd_trajopt::Solution& solution,
+                                             const std::string& frame_id);
+
+}  // namespace fesd_ros

@@ -1,0 +1,260 @@
+#include "trajopt_node.h"
+
+#include <cmath>
+#include <exception>
+
+#include "fesd_trajopt/core/circle_example.h"
+#include "fesd_trajopt/core/fesd_integrator.h"
+#include "fesd_trajopt/core/moving_part.h"
+#include "fesd_trajopt/core/ocp_solver.h"
+#include "fesd_trajopt/core/stopwatch.h"
+#include "scene_request.h"
+#include "solution_message.h"
+
+namespace fesd_ros {
+namespace {
+
+/// The discretisation of a request: its values where given, else the configuration's.
+struct Discretization {
+  int elements, stages;
+  std::string error;
+};
+
+template <class Request>
+Discretization discretization(const Request& request, const NodeConfig& config) {
+  Discretization d{
+      request.has_num_elements ? static_cast<int>(request.num_elements) : config.num_elements,
+      request.has_num_stages ? static_cast<int>(request.num_stages) : config.num_stages, ""};
+  if (d.elements < 1 || d.elements > config.limits.max_elements) {
+    d.error = "num_elements must be in 1.." + std::to_string(config.limits.max_elements) +
+              ", got " + std::to_string(d.elements);
+  } else if (d.stages < 1 || d.stages > config.limits.max_stages) {
+    d.error = "num_stages must be in 1.." + std::to_string(config.limits.max_stages) + ", got " +
+              std::to_string(d.stages);
+  }
+  return d;
+}
+
+template <class Response>
+void refuse(Response& response, const std::string& why) {
+  response.status = kInvalidRequest;
+  response.message = "invalid request: " + why;
+  response.solution.status = kInvalidRequest;
+  response.solution.message = response.message;
+  ROS_WARN_STREAM("fesd_trajopt: " << response.message);
+}
+
+template <class Response>
+void finish(Response& response, const std::vector<std::string>& notes) {
+  response.status = response.solution.status;
+  response.message = response.solution.message;
+  for (const std::string& note : notes) response.message += "; " + note;
+}
+
+// Failures are answered with a status, never as a failed service call.
+template <class Response, class Handler>
+bool answerCatchingErrors(const char* service, Response& response, Handler handle) {
+  try {
+    handle();
+  } catch (const std::exception& error) {
+    response.status = statusCode(fesd::SolveStatus::kSolverError);
+    response.message = std::string("internal error: ") + error.what();
+    ROS_ERROR_STREAM("fesd_trajopt: " << service << ": " << response.message);
+  }
+  return true;
+}
+
+}  // namespace
+
+TrajoptNode::TrajoptNode(ros::NodeHandle node, ros::NodeHandle private_node)
+    : node_(node), private_node_(private_node), config_(loadNodeConfig(private_node)) {
+  marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
+  solution_publisher_ = private_node_.advertise<fesd_trajopt::Solution>("solution", 1, true);
+  solve_service_ =
+      private_node_.advertiseService("solve_trajectory", &TrajoptNode::solveTrajectory, this);
+  simulate_service_ = private_node_.advertiseService("simulate", &TrajoptNode::simulate, this);
+  ROS_INFO_STREAM("fesd_trajopt: ready ("
+                  << config_.bodies.size() << " configured bodies, "
+                  << (config_.scene_urdf.empty() ? "no default scene" : "default scene loaded")
+                  << ")");
+}
+
+bool TrajoptNode::solveTrajectory(fesd_trajopt::SolveTrajectory::Request& request,
+                                  fesd_trajopt::SolveTrajectory::Response& response) {
+  return answerCatchingErrors("solve_trajectory", response,
+                              [&] { handleSolve(request, response); });
+}
+
+bool TrajoptNode::simulate(fesd_trajopt::Simulate::Request& request,
+                           fesd_trajopt::Simulate::Response& response) {
+  return answerCatchingErrors("simulate", response, [&] { handleSimulate(request, response); });
+}
+
+void TrajoptNode::handleSolve(const fesd_trajopt::SolveTrajectory::Request& request,
+                              fesd_trajopt::SolveTrajectory::Response& response) {
+  fesd::Stopwatch stopwatch;
+  TaskBuild build = buildTask(config_, sceneFields(request), private_node_);
+  if (!build.error.empty()) return refuse(response, build.error);
+  fesd::SceneTask& task = build.task;
+  if (request.has_horizon) task.horizon = request.horizon;
+  if (request.has_num_intervals) task.num_intervals = static_cast<int>(request.num_intervals);
+  const Discretization grid = discretization(request, config_);
+  if (!grid.error.empty()) return refuse(response, grid.error);
+  if (request.method > fesd_trajopt::SolveTrajectory::Request::METHOD_STANDARD) {
+    return refuse(response, "unknown method " + std::to_string(request.method));
+  }
+  const double tolerance = request.has_complementarity_tolerance
+                               ? request.complementarity_tolerance
+                               : config_.complementarity_tolerance;
+  const double budget =
+      request.has_wall_time_budget ? request.wall_time_budget : config_.wall_time_budget;
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {
+    return refuse(response, "the complementarity tolerance must be > 0 and finite");
+  }
+  if (!(budget > 0.0)) return refuse(response, "the wall-time budget must be > 0");
+  const std::string problem = fesd::validateTask(task, config_.limits);
+  if (!problem.empty()) return refuse(response, problem);
+
+  const std::vector<fesd::PairDecision> decisions = fesd::decidePairs(task);
+  const fesd::MovingPart part = fesd::movingPart(task, decisions);
+  const fesd::OcpDefinition ocp = fesd::buildOcp(part.task, part.modelled);
+  fesd::OcpOptions options;
+  options.discretization.num_elements = grid.elements;
+  options.discretization.num_stages = grid.stages;
+  options.discretization.switch_detection =
+      request.method == fesd_trajopt::SolveTrajectory::Request::METHOD_DEFAULT
+          ? config_.fesd
+          : request.method == fesd_trajopt::SolveTrajectory::Request::METHOD_FESD;
+  options.homotopy.complementarity_tolerance = tolerance;
+  options.homotopy.wall_time_budget = budget;
+  ROS_INFO_STREAM("fesd_trajopt: solving "
+                  << part.bodies.size() << " moving of " << task.scene.bodies().size()
+                  << " bodies, " << part.modelled.size() << " modelled / "
+                  << decisions.size() - part.modelled.size() << " pruned pairs, "
+                  << task.num_intervals << " intervals x " << grid.elements
+                  << " elements, n_s = " << grid.stages);
+  fesd::OcpSolver solver(ocp, options);
+  const fesd::OcpSolution solution = solver.solve();
+  response.solution = sceneSolution(
+      task, decisions, fesd::fullSceneTrajectory(task, part, solution.trajectory), solution.report);
+  const fesd::NlpAssembly& nlp = solver.discretization().nlp();
+  response.solution.statistics.nlp_variables = nlp.numVariables();
+  response.solution.statistics.nlp_constraints = nlp.numConstraints();
+  response.solution.statistics.complementarity_constraints = nlp.numComplementarities();
+  if (request.verify) {
+    fesd::SimulationOptions fine;
+    fine.discretization.num_stages = config_.verification_stages;
+    fine.discretization.num_elements = config_.verification_elements;
+    response.solution.verified = true;
+    response.solution.verification_error = fesd::resimulationError(ocp, solution, fine);
+  }
+  response.solution.header.stamp = ros::Time::now();
+  response.solution.header.frame_id = config_.frame_id;
+  response.solution.statistics.wall_time = stopwatch.wallSeconds();
+  response.solution.statistics.cpu_time = stopwatch.cpuSeconds();
+  finish(response, build.notes);
+  ROS_INFO_STREAM("fesd_trajopt: " << response.message << " (" << stopwatch.wallSeconds() << " s)");
+  std::lock_guard<std::mutex> lock(publish_mutex_);
+  solution_publisher_.publish(response.solution);
+  marker_publisher_.publish(sceneMarkers(task, response.solution, config_.frame_id));
+}
+
+void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
+                                 fesd_trajopt::Simulate::Response& response) {
+  fesd::Stopwatch stopwatch;
+  const Discretization grid = discretization(request, config_);
+  if (!grid.error.empty()) return refuse(response, grid.error);
+  fesd::SimulationOptions options;
+  options.discretization.num_elements = grid.elements;
+  options.discretization.num_stages = grid.stages;
+  const int steps =
+      request.has_num_steps ? static_cast<int>(request.num_steps) : config_.num_intervals;
+  if (steps < 1 || steps > config_.limits.max_intervals) {
+    return refuse(response,
+                  "num_steps must be in 1.." + std::to_string(config_.limits.max_intervals));
+  }
+  if (request.system == "circle_example") {
+    const double horizon = request.has_horizon ? request.horizon : fesd::circle_example::horizon();
+    if (!(horizon > 0.0) || !std::isfinite(horizon) || horizon > config_.limits.max_horizon) {
+      return refuse(response, "the horizon must be > 0 and finite");
+    }
+    fesd::FesdIntegrator integrator(fesd::circle_example::model(), options);
+    const fesd::SimulationResult result =
+        integrator.simulate(fesd::circle_example::initialState(), horizon, steps);
+    fillCommon(result.trajectory, result.totals, response.solution);
+    for (const fesd::SwitchEvent& event : result.trajectory.switches) {
+      fesd_trajopt::SwitchEvent message;
+      message.time = event.time;
+      message.first = "x";
+      message.second = "x2 >= -1";
+      message.kind = event.kind == fesd::SwitchEvent::Kind::kContact
+                         ? fesd_trajopt::SwitchEvent::CONTACT
+                         : fesd_trajopt::SwitchEvent::RELEASE;
+      response.solution.switches.push_back(message);
+    }
+    response.solution.message = result.message;
+    response.solution.header.stamp = ros::Time::now();
+    finish(response, {});
+    return;
+  }
+  if (!request.system.empty()) {
+    return refuse(response, "unknown system '" + request.system +
+                                "' (\"\" for the scene, or \"circle_example\")");
+  }
+  TaskBuild build = buildTask(config_, sceneFields(request), private_node_);
+  if (!build.error.empty()) return refuse(response, build.error);
+  fesd::SceneTask& task = build.task;
+  if (request.has_horizon) task.horizon = request.horizon;
+  task.num_intervals = steps;
+  const fesd::DiscScene& scene = task.scene;
+  const int dim = scene.dimension();
+  std::vector<Eigen::VectorXd> controls(steps, Eigen::VectorXd::Zero(scene.controlSize()));
+  for (auto& body : task.bodies) body.max_speed = 0.0;  // reach from the actual commands
+  for (const fesd_trajopt::BodyTrajectory& command : request.commands) {
+    int b = -1;
+    for (size_t i = 0; i < scene.bodies().size(); ++i) {
+      if (scene.bodies()[i].name == command.name) b = static_cast<int>(i);
+    }
+    if (b < 0 || !scene.bodies()[b].actuated) {
+      return refuse(response, "a command names '" + command.name + "', not an actuated body");
+    }
+    if (command.controls.size() != 1 && static_cast<int>(command.controls.size()) != steps) {
+      return refuse(response, "the command of '" + command.name + "' needs 1 or " +
+                                  std::to_string(steps) + " controls");
+    }
+    for (int k = 0; k < steps; ++k) {
+      const geometry_msgs::Vector3& v = command.controls[command.controls.size() == 1 ? 0 : k];
+      Eigen::VectorXd u(dim);
+      u(0) = v.x;
+      u(1) = v.y;
+      if (dim == 3) u(2) = v.z;
+      if (!u.allFinite())
+        return refuse(response, "the command of '" + command.name + "' is not finite");
+      controls[k].segment(scene.controlIndex(b), dim) = u;
+      task.bodies[b].max_speed = std::max(task.bodies[b].max_speed, u.cwiseAbs().maxCoeff());
+    }
+  }
+  // Workspace bounds are OCP constraints, not physics: a simulation neither enforces them nor
+  // may prune with them.
+  for (fesd::BodyTask& body : task.bodies) {
+    body.workspace_lower.resize(0);
+    body.workspace_upper.resize(0);
+  }
+  const std::string problem = fesd::validateTask(task, config_.limits);
+  if (!problem.empty()) return refuse(response, problem);
+  const std::vector<fesd::PairDecision> decisions = fesd::decidePairs(task);
+  const fesd::MovingPart part = fesd::movingPart(task, decisions);
+  const fesd::DiscScene& moving = part.task.scene;
+  fesd::FesdIntegrator integrator(moving.model(part.modelled), options);
+  const fesd::SimulationResult result =
+      integrator.simulate(moving.initialState(), task.horizon, steps, controls);
+  response.solution = sceneSolution(
+      task, decisions, fesd::fullSceneTrajectory(task, part, result.trajectory), result.totals);
+  response.solution.message = result.message;
+  response.solution.header.stamp = ros::Time::now();
+  response.solution.header.frame_id = config_.frame_id;
+  response.solution.statistics.wall_time = stopwatch.wallSeconds();
+  finish(response, build.notes);
+}
+
+}  // namespace fesd_ros

@@ -1,0 +1,244 @@
+#!/usr/bin/python3
+"""Integration tests of the fesd_trajopt node: services, statuses, markers, concurrency."""
+import math
+import threading
+import unittest
+
+import rospy
+import rostest
+from fesd_trajopt.msg import BodySpec, BodyTrajectory, ContactPair, SwitchEvent, Wall
+from fesd_trajopt.srv import (Simulate, SimulateRequest, SolveTrajectory,
+                              SolveTrajectoryRequest)
+from geometry_msgs.msg import Point, Vector3
+from visualization_msgs.msg import MarkerArray
+
+SUCCESS, INVALID_REQUEST = 0, 6
+SOLVE = "/fesd_trajopt/solve_trajectory"
+SIMULATE = "/fesd_trajopt/simulate"
+
+
+def body(name, **fields):
+    spec = BodySpec(name=name)
+    for key, value in fields.items():
+        setattr(spec, key, value)
+    return spec
+
+
+def small_default(intervals=10):
+    """The default scene on a coarse grid: a quick but complete solve."""
+    request = SolveTrajectoryRequest()
+    request.has_num_intervals, request.num_intervals = True, intervals
+    request.has_num_elements, request.num_elements = True, 2
+    return request
+
+
+class NodeServices(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("fesd_trajopt_node_test")
+        rospy.wait_for_service(SOLVE, timeout=60.0)
+        rospy.wait_for_service(SIMULATE, timeout=60.0)
+        cls.solve = rospy.ServiceProxy(SOLVE, SolveTrajectory)
+        cls.simulate = rospy.ServiceProxy(SIMULATE, Simulate)
+        cls.default = cls.solve(SolveTrajectoryRequest())
+
+    def assert_invalid(self, request, keyword):
+        response = self.solve(request)
+        self.assertEqual(response.status, INVALID_REQUEST, keyword + ": " + response.message)
+        self.assertIn(keyword, response.message)
+
+    def test_empty_request_solves_the_default_scene(self):
+        response = self.default
+        self.assertEqual(response.status, SUCCESS, response.message)
+        kinds = [event.kind for event in response.solution.switches]
+        self.assertIn(SwitchEvent.CONTACT, kinds)
+        self.assertIn(SwitchEvent.RELEASE, kinds)
+        final = {b.name: b.positions[-1] for b in response.solution.bodies}
+        self.assertLess(math.hypot(final["object"].x, final["object"].y - 10.0), 0.1)
+        self.assertLessEqual(response.solution.statistics.complementarity_residual, 1e-8)
+        modeled = {(p.first, p.second) for p in response.solution.modeled_pairs}
+        self.assertEqual(modeled, {("actuator_1", "object"), ("actuator_2", "object")})
+        self.assertEqual([(p.first, p.second) for p in response.solution.pruned_pairs],
+                         [("actuator_1", "actuator_2")])
+        for b in response.solution.bodies:  # workspace bounds at every element boundary
+            if b.name == "actuator_1":
+                self.assertTrue(all(p.x <= -2.5 + 1e-6 for p in b.positions))
+            if b.name == "actuator_2":
+                self.assertTrue(all(p.x >= 2.5 - 1e-6 for p in b.positions))
+        self.assertEqual(len(response.solution.times), len(response.solution.step_lengths) + 1)
+
+    def test_custom_scene_given_in_the_message(self):
+        request = SolveTrajectoryRequest()
+        request.urdf = '<robot name="empty"><link name="world"/></robot>'
+        request.bodies = [
+            body("pusher", add=True, radius=0.5, initial_position=Point(-3, 0, 0),
+                 role=BodySpec.ROLE_ACTUATED, max_speed=4.0),
+            body("puck", add=True, radius=0.5, initial_position=Point(0, 0, 0),
+                 target=Point(2, 0, 0), target_weight=100.0),
+            body("bystander", add=True, radius=0.5, initial_position=Point(0, 4, 0))]
+        request.walls = [Wall(name="floor", normal=Vector3(0, 2, 0), offset=-4.0)]  # y >= -2
+        request.has_horizon, request.horizon = True, 2.0
+        request.has_num_intervals, request.num_intervals = True, 10
+        response = self.solve(request)
+        self.assertEqual(response.status, SUCCESS, response.message)
+        puck = [b for b in response.solution.bodies if b.name == "puck"][0]
+        self.assertLess(math.hypot(puck.positions[-1].x - 2.0, puck.positions[-1].y), 0.2)
+        touches = [(e.first, e.second) for e in response.solution.switches
+                   if e.kind == SwitchEvent.CONTACT]
+        self.assertIn(("pusher", "puck"), touches)
+        names = {(p.first, p.second) for p in response.solution.modeled_pairs +
+                 response.solution.pruned_pairs}
+        self.assertIn(("puck", "floor"), names)
+
+    def test_scene_from_a_urdf_parameter(self):
+        request = SolveTrajectoryRequest()
+        request.urdf_param = "/three_disc_scene"
+        request.bodies = [body("pusher", role=BodySpec.ROLE_ACTUATED, max_speed=3.0),
+                          body("puck", target=Point(1.5, 0, 0), target_weight=10.0)]
+        request.has_horizon, request.horizon = True, 2.0
+        request.has_num_intervals, request.num_intervals = True, 10
+        response = self.solve(request)
+        self.assertEqual(response.status, SUCCESS, response.message)
+        self.assertIn("decoration", response.message)  # the link without collision geometry
+        self.assertEqual(response.solution.statistics.complementarity_residual, 0.0)
+
+    def test_invalid_requests_are_refused_and_the_node_keeps_serving(self):
+        nan = float("nan")
+        cases = [
+            ([body("ghost")], {}, "unknown link"),
+            ([body("object", radius=-1.0)], {}, "radius"),
+            ([body("object", override_initial_position=True,
+                   initial_position=Point(nan, 0, 0))], {}, "not finite"),
+            ([body("actuator_2", override_initial_position=True,
+                   initial_position=Point(2.6, 0, 0))], {}, "overlap"),
+            ([], {"has_num_elements": True, "num_elements": 0}, "num_elements"),
+            ([], {"has_horizon": True, "horizon": 0.0}, "horizon"),
+            ([], {"has_horizon": True, "horizon": -1.0}, "horizon"),
+            ([], {"has_num_intervals": True, "num_intervals": 100000}, "intervals"),
+            ([], {"urdf": "<robot name='broken'><link name="}, "malformed URDF"),
+            ([], {"urdf_param": "/no/such/param"}, "no parameter"),
+            ([body("object", workspace_lower=[nan, 0.0])], {}, "NaN"),
+            ([], {"allowed_pairs": [ContactPair(first="object", second="nobody")]},
+             "allowed pair"),
+            ([body("actuator_1", role=BodySpec.ROLE_PASSIVE),
+              body("actuator_2", role=BodySpec.ROLE_PASSIVE)], {}, "actuated"),
+        ]
+        for bodies, fields, keyword in cases:
+            request = SolveTrajectoryRequest()
+            request.bodies = bodies
+            for key, value in fields.items():
+                setattr(request, key, value)
+            self.assert_invalid(request, keyword)  # rosunit reports no subTest failures
+        after = self.simulate(SimulateRequest(system="circle_example"))
+        self.assertEqual(after.status, SUCCESS, after.message)
+        bad = self.simulate(SimulateRequest(system="pendulum"))
+        self.assertEqual(bad.status, INVALID_REQUEST)
+
+    def test_markers_arrive_with_the_expected_namespaces(self):
+        markers = rospy.wait_for_message("/fesd_trajopt/markers", MarkerArray, timeout=30.0)
+        self.assertEqual(markers.markers[0].action, 3)  # DELETEALL first
+        namespaces = {m.ns for m in markers.markers[1:]}
+        for expected in ["bodies_start", "bodies_final", "targets", "paths",
+                         "switch_configurations", "switch_labels"]:
+            self.assertIn(expected, namespaces)
+        self.assertTrue(all(m.header.frame_id == "world" for m in markers.markers))
+
+    def test_concurrent_calls_are_both_answered_correctly(self):
+        requests = [small_default(10), small_default(12)]
+        sequential = [self.solve(r) for r in requests]
+        results = [None, None]
+
+        def call(i):
+            results[i] = rospy.ServiceProxy(SOLVE, SolveTrajectory)(requests[i])
+
+        threads = [threading.Thread(target=call, args=(i,)) for i in range(2)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join(timeout=300.0)
+        for alone, together in zip(sequential, results):
+            self.assertEqual(together.status, SUCCESS, together.message)
+            self.assertEqual(together.solution.states, alone.solution.states)
+
+    def test_the_same_request_gives_the_same_answer(self):
+        first, second = self.solve(small_default(10)), self.solve(small_default(10))
+        self.assertEqual(first.status, SUCCESS, first.message)
+        self.assertEqual(first.solution.states, second.solution.states)
+        self.assertEqual(first.solution.statistics.ipopt_iterations,
+                         second.solution.statistics.ipopt_iterations)
+
+    def test_a_far_away_body_is_pruned(self):
+        request = SolveTrajectoryRequest()
+        request.bodies = [body("far", add=True, radius=1.0, initial_position=Point(1e4, 1e4, 0))]
+        response = self.solve(request)
+        self.assertEqual(response.status, SUCCESS, response.message)
+        pruned = {(p.first, p.second) for p in response.solution.pruned_pairs}
+        for other in ["actuator_1", "actuator_2", "object"]:
+            self.assertIn((other, "far"), pruned)
+        self.assertEqual(len(response.solution.modeled_pairs), 2)
+        # A passive body nothing can reach never moves: it adds no variable and no constraint.
+        for field in ["nlp_variables", "nlp_constraints", "complementarity_constraints"]:
+            self.assertEqual(getattr(response.solution.statistics, field),
+                             getattr(self.default.solution.statistics, field), field)
+        far = [b for b in response.solution.bodies if b.name == "far"][0]
+        self.assertTrue(all(p.x == 1e4 and p.y == 1e4 for p in far.positions))
+        moving = {b.name: b.positions for b in response.solution.bodies}
+        for b in self.default.solution.bodies:  # the same NLP, so the very same plan
+            self.assertEqual(moving[b.name], b.positions, b.name)
+
+    def test_a_scene_where_nothing_can_touch_is_one_smooth_nlp(self):
+        request = SolveTrajectoryRequest()
+        request.urdf = '<robot name="empty"><link name="world"/></robot>'
+        request.bodies = [
+            body("mover", add=True, radius=0.5, role=BodySpec.ROLE_ACTUATED, max_speed=1.0,
+                 target=Point(1, 0, 0), target_weight=10.0),
+            body("rock", add=True, radius=0.5, initial_position=Point(0, 10, 0))]
+        request.has_horizon, request.horizon = True, 2.0
+        request.has_num_intervals, request.num_intervals = True, 10
+        response = self.solve(request)
+        self.assertEqual(response.status, SUCCESS, response.message)
+        statistics = response.solution.statistics
+        self.assertEqual(statistics.complementarity_constraints, 0)
+        self.assertEqual(statistics.homotopy_steps, 1)
+        self.assertEqual(len(response.solution.modeled_pairs), 0)
+        mover = [b for b in response.solution.bodies if b.name == "mover"][0]
+        # min 1e-4 T u^2 + 10 (T u - 1)^2 with T = 2 (control weight from config/): the optimal
+        # constant u gives p(T) = 2 u = 1 / (1 + 5e-6).
+        self.assertAlmostEqual(mover.positions[-1].x, 1.0 / (1.0 + 5e-6), delta=1e-7)
+        self.assertAlmostEqual(mover.positions[-1].y, 0.0, delta=1e-7)
+
+    def test_simulate_circle_example_matches_the_core_integrator(self):
+        request = SimulateRequest(system="circle_example")
+        request.has_num_steps, request.num_steps = True, 10
+        request.has_num_elements, request.num_elements = True, 2
+        request.has_num_stages, request.num_stages = True, 4
+        response = self.simulate(request)
+        self.assertEqual(response.status, SUCCESS, response.message)
+        states = response.solution.states
+        self.assertEqual(response.solution.state_dimension, 2)
+        self.assertLess(math.hypot(states[-2] + 1.0, states[-1]), 1e-8)
+        times = sorted(e.time for e in response.solution.switches)
+        self.assertEqual(len(times), 2)
+        self.assertAlmostEqual(times[0], 5 * math.pi / 12, delta=1e-6)
+        self.assertAlmostEqual(times[1], 5 * math.pi / 12 + math.sqrt(3), delta=1e-6)
+
+    def test_simulate_a_scene_under_commands(self):
+        request = SimulateRequest()
+        request.urdf_param = "/three_disc_scene"
+        request.bodies = [body("pusher", role=BodySpec.ROLE_ACTUATED)]
+        request.commands = [BodyTrajectory(name="pusher", controls=[Vector3(2.0, 0, 0)])]
+        request.has_horizon, request.horizon = True, 2.0
+        request.has_num_steps, request.num_steps = True, 4
+        response = self.simulate(request)
+        self.assertEqual(response.status, SUCCESS, response.message)
+        final = {b.name: b.positions[-1] for b in response.solution.bodies}
+        # The pusher reaches the puck at x = -1 after 1 s. In contact, the projection onto the
+        # tangent cone shares the commanded velocity between the two discs: both move at 1 m/s.
+        self.assertAlmostEqual(final["pusher"].x, 0.0, delta=1e-6)
+        self.assertAlmostEqual(final["puck"].x, 1.0, delta=1e-6)
+        contact = [e for e in response.solution.switches if e.kind == SwitchEvent.CONTACT]
+        self.assertAlmostEqual(contact[0].time, 1.0, delta=1e-6)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("fesd_trajopt", "node_services", NodeServices)
