@@ -207,7 +207,7 @@ class NodeServices(unittest.TestCase):
         self.assertAlmostEqual(mover.positions[-1].x, 1.0 / (1.0 + 5e-6), delta=1e-7)
         self.assertAlmostEqual(mover.positions[-1].y, 0.0, delta=1e-7)
 
-    def test_simulate_circle_example_matches_the_core_integrator(self):
+    def test_simulate_circle_example_matches_the_analytic_solution(self):
         request = SimulateRequest(system="circle_example")
         request.has_num_steps, request.num_steps = True, 10
         request.has_num_elements, request.num_elements = True, 2

@@ -1,5 +1,6 @@
 // Scenes as tasks: URDF reading, validation, reachability pruning and the moving part.
 #include <cmath>
+#include <map>
 
 #include <gtest/gtest.h>
 
@@ -114,6 +115,41 @@ TEST(SceneTask, PruningKeepsExactlyThePairsThatCanTouch) {
     }
   }
   EXPECT_EQ(showcase_modelled, 2);
+}
+
+TEST(SceneTask, PassiveBodiesMoveOnlyWhenSomethingThatMovesCanReachThem) {
+  fesd::SceneTask task = pushingTask();
+  // Two more rocks beside the first, out of everyone's reach: no pair among them is modelled.
+  task.scene.bodies().push_back({"rock_b", 1.0, Eigen::Vector2d(103.0, 100.0), false});
+  task.scene.bodies().push_back({"rock_c", 1.0, Eigen::Vector2d(106.0, 100.0), false});
+  // A chain, D = 5.66: the pusher's box ends at x = 2.66, short of the marble (4, 0); the puck
+  // can reach the marble, which then can reach the pebble (8, 0).
+  task.scene.bodies().push_back({"marble", 0.5, Eigen::Vector2d(4.0, 0.0), false});
+  task.scene.bodies().push_back({"pebble", 0.5, Eigen::Vector2d(8.0, 0.0), false});
+  task.bodies.resize(task.scene.bodies().size());
+  std::map<std::string, const fesd::PairDecision*> by_name;
+  const std::vector<fesd::PairDecision> decisions = fesd::decidePairs(task);
+  for (const fesd::PairDecision& d : decisions) by_name[task.scene.pairName(d.pair)] = &d;
+  auto decision = [&](const std::string& name) {
+    EXPECT_TRUE(by_name.count(name)) << name;
+    return by_name.count(name) ? *by_name.at(name) : fesd::PairDecision{};
+  };
+  EXPECT_FALSE(decision("rock/rock_b").modelled);
+  EXPECT_NE(decision("rock/rock_b").reason.find("nothing can push"), std::string::npos);
+  EXPECT_FALSE(decision("rock_b/rock_c").modelled);
+  EXPECT_TRUE(decision("puck/marble").modelled);
+  EXPECT_TRUE(decision("marble/pebble").modelled);
+  EXPECT_TRUE(decision("pusher/pebble").modelled);  // both boxes have reach D: x 2.66 > 2.34
+  EXPECT_FALSE(decision("pebble/post").modelled);   // x gap 2.34 - 0.9 > 0
+
+  // Without the puck-marble pair the chain breaks: the pusher misses the marble by 0.34, so
+  // marble and pebble cannot move.
+  for (const fesd::PairDecision& d : decisions) {
+    if (task.scene.pairName(d.pair) != "puck/marble") task.allowed_pairs.push_back(d.pair);
+  }
+  for (const fesd::PairDecision& d : fesd::decidePairs(task)) {
+    if (task.scene.pairName(d.pair) == "marble/pebble") EXPECT_FALSE(d.modelled);
+  }
 }
 
 TEST(MovingPart, APassiveBodyOutOfReachIsLeftOutAndKeepsItsPlace) {

@@ -68,6 +68,68 @@ std::string formatNumber(double value) {
   return out.str();
 }
 
+bool isAllowed(const SceneTask& task, const ContactPair& pair) {
+  return task.allowed_pairs.empty() ||
+         std::any_of(task.allowed_pairs.begin(), task.allowed_pairs.end(),
+                     [&](const ContactPair& p) {
+                       return p.body == pair.body && p.kind == pair.kind && p.other == pair.other;
+                     });
+}
+
+/// A lower bound on the gap between a pair's surfaces during the task, each body within its
+/// reach of its start (and within its workspace).
+double separationBound(const SceneTask& task, const ContactPair& pair,
+                       const std::vector<double>& reach) {
+  const DiscScene& scene = task.scene;
+  const Box body = reachableBox(task, pair.body, reach[pair.body]);
+  const double radius = scene.bodies()[pair.body].radius;
+  switch (pair.kind) {
+    case ContactPair::Kind::kBody:
+      return boxDistance(body, reachableBox(task, pair.other, reach[pair.other])) - radius -
+             scene.bodies()[pair.other].radius;
+    case ContactPair::Kind::kObstacle: {
+      const SceneObstacle& o = scene.obstacles()[pair.other];
+      return boxDistance(body, Box{o.position, o.position}) - radius - o.radius;
+    }
+    case ContactPair::Kind::kWall: {
+      const SceneWall& w = scene.walls()[pair.other];
+      return (w.normal.array() * body.low.array()).min(w.normal.array() * body.high.array()).sum() -
+             w.offset - radius;
+    }
+  }
+  return 0.0;
+}
+
+/// How far each body can get from its start. The projected velocity is never longer than the
+/// controls' (the projection does not expand), so no body outruns T |u|_max. A passive body
+/// moves only when pushed: it gets that reach once it can touch a body that moves (through an
+/// allowed pair), and keeps 0 otherwise.
+std::vector<double> bodyReach(const SceneTask& task) {
+  const DiscScene& scene = task.scene;
+  double speed_squared = 0.0;
+  for (size_t b = 0; b < scene.bodies().size(); ++b) {
+    if (scene.bodies()[b].actuated) {
+      speed_squared += scene.dimension() * task.bodies[b].max_speed * task.bodies[b].max_speed;
+    }
+  }
+  const double reach = task.horizon * std::sqrt(speed_squared);
+  std::vector<double> reaches(scene.bodies().size(), 0.0);
+  for (size_t b = 0; b < scene.bodies().size(); ++b) {
+    if (scene.bodies()[b].actuated) reaches[b] = reach;
+  }
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const ContactPair& pair : scene.allPairs()) {
+      if (pair.kind != ContactPair::Kind::kBody || !isAllowed(task, pair)) continue;
+      const bool first_moves = reaches[pair.body] > 0.0, second_moves = reaches[pair.other] > 0.0;
+      if (first_moves == second_moves || separationBound(task, pair, reaches) > 0.0) continue;
+      reaches[first_moves ? pair.other : pair.body] = reach;
+      grew = true;
+    }
+  }
+  return reaches;
+}
+
 }  // namespace
 
 std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
@@ -160,47 +222,20 @@ std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
 }
 
 std::vector<PairDecision> decidePairs(const SceneTask& task) {
-  const DiscScene& scene = task.scene;
-  double speed_squared = 0.0;
-  for (size_t b = 0; b < scene.bodies().size(); ++b) {
-    if (scene.bodies()[b].actuated) {
-      speed_squared += scene.dimension() * task.bodies[b].max_speed * task.bodies[b].max_speed;
-    }
-  }
-  const double reach = task.horizon * std::sqrt(speed_squared);
+  const std::vector<double> reach = bodyReach(task);
   std::vector<PairDecision> decisions;
-  for (const ContactPair& pair : scene.allPairs()) {
-    const bool allowed =
-        task.allowed_pairs.empty() ||
-        std::any_of(task.allowed_pairs.begin(), task.allowed_pairs.end(),
-                    [&](const ContactPair& p) {
-                      return p.body == pair.body && p.kind == pair.kind && p.other == pair.other;
-                    });
-    if (!allowed) {
+  for (const ContactPair& pair : task.scene.allPairs()) {
+    if (!isAllowed(task, pair)) {
       decisions.push_back({pair, false, "not among the allowed pairs"});
       continue;
     }
-    const Box body = reachableBox(task, pair.body, reach);
-    const double radius = scene.bodies()[pair.body].radius;
-    double separation = 0.0;  // a lower bound on c's geometric gap over the task
-    switch (pair.kind) {
-      case ContactPair::Kind::kBody:
-        separation = boxDistance(body, reachableBox(task, pair.other, reach)) - radius -
-                     scene.bodies()[pair.other].radius;
-        break;
-      case ContactPair::Kind::kObstacle: {
-        const SceneObstacle& o = scene.obstacles()[pair.other];
-        separation = boxDistance(body, Box{o.position, o.position}) - radius - o.radius;
-        break;
-      }
-      case ContactPair::Kind::kWall: {
-        const SceneWall& w = scene.walls()[pair.other];
-        separation =
-            (w.normal.array() * body.low.array()).min(w.normal.array() * body.high.array()).sum() -
-            w.offset - radius;
-        break;
-      }
+    const bool moves = reach[pair.body] > 0.0 ||
+                       (pair.kind == ContactPair::Kind::kBody && reach[pair.other] > 0.0);
+    if (!moves) {
+      decisions.push_back({pair, false, "neither side can move: nothing can push them"});
+      continue;
     }
+    const double separation = separationBound(task, pair, reach);
     if (separation > 0.0) {
       decisions.push_back({pair, false,
                            "cannot touch within the horizon: reachable sets stay " +

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "scene_request.h"
 
@@ -181,6 +182,7 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
     path.color = body_color(b, 1.0);
     markers.markers.push_back(path);
   }
+  std::vector<geometry_msgs::Point> labels_placed;
   for (const fesd_trajopt::SwitchEvent& event : solution.switches) {
     // The configuration at the switch: the element boundary at that time.
     size_t k = 0;
@@ -202,13 +204,22 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
     label.pose.position.x = label_at.x / std::max(touching, 1);
     label.pose.position.y = label_at.y / std::max(touching, 1);
     label.pose.position.z = label_at.z / std::max(touching, 1) + 0.5;
+    // Simultaneous switches would print on top of each other: stack them downwards.
+    constexpr double kLineHeight = 0.8;
+    for (const geometry_msgs::Point& placed : labels_placed) {
+      if (std::abs(placed.x - label.pose.position.x) < 4.0 &&
+          std::abs(placed.y - label.pose.position.y) < kLineHeight) {
+        label.pose.position.y = placed.y - kLineHeight;
+      }
+    }
+    labels_placed.push_back(label.pose.position);
     char text[160];
     std::snprintf(text, sizeof(text), "%s %s/%s t=%.3f",
                   event.kind == fesd_trajopt::SwitchEvent::CONTACT ? "contact" : "release",
                   event.first.c_str(), event.second.c_str(), event.time);
     label.text = text;
     label.scale.z = 0.6;
-    label.color = color(1.0, 1.0, 1.0, 1.0);
+    label.color = color(0.1, 0.1, 0.1, 1.0);  // for the light background of the shipped view
     markers.markers.push_back(label);
   }
   for (const fesd::SceneObstacle& o : scene.obstacles()) {

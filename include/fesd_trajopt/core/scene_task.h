@@ -58,9 +58,10 @@ struct PairDecision {
 /// Simulate only the effects the scene calls for: a pair is modelled when it is allowed and
 /// can touch within the horizon. Conservative reachability: the DCS velocity is the projection
 /// of f onto the tangent cone, which does not lengthen it, so no body moves farther than
-/// D = T |u_max| (the norm over all actuated coordinates at their bounds); a pair with gap g
-/// can only touch if g <= reach_i + reach_j, with reach D for bodies (0 without any actuated
-/// body) and 0 for obstacles and walls.
+/// D = T |u_max| (the norm over all actuated coordinates at their bounds). Actuated bodies have
+/// reach D; a passive body has reach D if it can touch a body with reach (through an allowed
+/// pair; repeated until nothing changes), else 0, like obstacles and walls. A pair can touch
+/// if the boxes start +- reach (clipped to the workspace bounds) come within the radii.
 std::vector<PairDecision> decidePairs(const SceneTask& task);
 
 /// The OCP of a task with the given modelled pairs as its constraints.

@@ -1,0 +1,92 @@
+#!/usr/bin/python3
+"""Service round trip and peak memory of a running fesd_trajopt node, per scene.
+
+Start the node first (roslaunch fesd_trajopt fesd_trajopt.launch), or use
+bench/node_roundtrip.sh, which does both. Prints one line of key=value pairs per run. The node's
+peak resident memory (VmHWM) only grows, so run the cases in the order of interest.
+"""
+import argparse
+import sys
+import time
+import xmlrpc.client
+
+import rosgraph
+import rospy
+from fesd_trajopt.msg import BodySpec
+from fesd_trajopt.srv import SolveTrajectory, SolveTrajectoryRequest
+
+NODE = "/fesd_trajopt"
+
+
+def passive_disc(name, x, y, radius):
+    body = BodySpec(name=name, add=True, radius=radius, role=BodySpec.ROLE_PASSIVE)
+    body.initial_position.x, body.initial_position.y = x, y
+    return body
+
+
+def default_scene():
+    return SolveTrajectoryRequest()
+
+
+def far_body():
+    """The default scene and one disc far out of reach: its pairs are pruned."""
+    request = SolveTrajectoryRequest()
+    request.bodies = [passive_disc("far_away", 1e4, 1e4, 1.0)]
+    return request
+
+
+def ten_discs_out_of_reach():
+    """The default scene and seven passive discs beyond the actuators' reach."""
+    request = SolveTrajectoryRequest()
+    request.bodies = [passive_disc("rock_%d" % i, 150.0 + 5.0 * i, 0.0, 1.0) for i in range(7)]
+    return request
+
+
+def ten_discs_in_reach():
+    """The default scene and seven passive discs the actuators could reach (no target of
+    theirs, off the pushing path): every pair that can touch is modelled."""
+    request = SolveTrajectoryRequest()
+    request.bodies = [passive_disc("rock_%d" % i, -12.0 + 4.0 * i, -12.0, 1.0) for i in range(7)]
+    return request
+
+
+CASES = {"default": default_scene, "far_body": far_body,
+         "ten_discs_out_of_reach": ten_discs_out_of_reach, "ten_discs_in_reach": ten_discs_in_reach}
+
+
+def node_memory_mib():
+    uri = rosgraph.Master("/fesd_trajopt_roundtrip_bench").lookupNode(NODE)
+    pid = xmlrpc.client.ServerProxy(uri).getPid("/")[2]
+    fields = dict(line.split(":", 1) for line in open("/proc/%d/status" % pid))
+    return (int(fields["VmHWM"].split()[0]) / 1024.0, int(fields["VmRSS"].split()[0]) / 1024.0)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--cases", default="default,far_body,ten_discs_out_of_reach",
+                        help="comma-separated, from: " + ", ".join(CASES))
+    parser.add_argument("--repeat", type=int, default=1)
+    args = parser.parse_args(rospy.myargv()[1:])
+    rospy.init_node("fesd_trajopt_roundtrip_bench", anonymous=True)
+    rospy.wait_for_service(NODE + "/solve_trajectory", timeout=60.0)
+    solve = rospy.ServiceProxy(NODE + "/solve_trajectory", SolveTrajectory)
+    for case in args.cases.split(","):
+        for run in range(args.repeat):
+            started = time.monotonic()
+            response = solve(CASES[case]())
+            round_trip = time.monotonic() - started
+            stats = response.solution.statistics
+            peak, resident = node_memory_mib()
+            print("case=%s run=%d status=%d bodies=%d modelled_pairs=%d pruned_pairs=%d "
+                  "nlp_variables=%d complementarities=%d ipopt_iterations=%d solve_s=%.3f "
+                  "round_trip_s=%.3f node_peak_mib=%.1f node_rss_mib=%.1f" % (
+                      case, run, response.status, len(response.solution.bodies),
+                      len(response.solution.modeled_pairs), len(response.solution.pruned_pairs),
+                      stats.nlp_variables, stats.complementarity_constraints,
+                      stats.ipopt_iterations, stats.wall_time, round_trip, peak, resident))
+            sys.stdout.flush()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

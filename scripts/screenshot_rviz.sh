@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Renders the demo (node + client + rviz) under Xvfb and saves a screenshot of rviz showing the
+# solved default scene: scripts/screenshot_rviz.sh [output.png] (default docs/rviz_default_scene.png).
+# Needs a built workspace (scripts/run_default.sh) and imagemagick for `import`.
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+source_workspace
+OUTPUT="${1:-$REPO_DIR/docs/rviz_default_scene.png}"
+DISPLAY_NUMBER=":$((90 + RANDOM % 9))"
+
+Xvfb "$DISPLAY_NUMBER" -screen 0 1200x850x24 >/dev/null 2>&1 &
+XVFB_PID=$!
+LOG="$(mktemp)"
+cleanup() {
+  [ -n "${LAUNCH_PID:-}" ] && kill "$LAUNCH_PID" 2>/dev/null && wait "$LAUNCH_PID" 2>/dev/null
+  kill "$XVFB_PID" 2>/dev/null
+  rm -f "$LOG"
+}
+trap cleanup EXIT
+sleep 2
+
+DISPLAY="$DISPLAY_NUMBER" roslaunch fesd_trajopt demo.launch >"$LOG" 2>&1 &
+LAUNCH_PID=$!
+# The client prints the round trip last; then give rviz a few frames to draw the markers.
+for _ in $(seq 300); do
+  grep -q "round trip" "$LOG" && break
+  sleep 1
+done
+grep -q "round trip" "$LOG" || { cat "$LOG"; echo "no solution within 300 s" >&2; exit 1; }
+sleep 5
+DISPLAY="$DISPLAY_NUMBER" import -window root "$OUTPUT"
+grep -A20 "fesd_trajopt demo:" "$LOG" | grep -v "^\[" || true
+echo "== screenshot: $OUTPUT"
