@@ -8,5 +8,7 @@ namespace fesd_bench {
 int orderPds(const Arguments& args);
 int derivatives(const Arguments& args);
 int ocpManipulation(const Arguments& args);
+int ocpAccuracy(const Arguments& args);
+int scaling(const Arguments& args);
 
 }  // namespace fesd_bench

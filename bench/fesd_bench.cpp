@@ -26,6 +26,17 @@ const std::map<std::string, Command>& commands() {
         "The collaborative manipulation OCP (seed 000 Sec. IV-B), key=value per run.\n"
         "    --intervals=30 --elements=3 --stages=2 --fesd=true --repeat=1 --step-bound=0.5\n"
         "    --fixed-grid-until=1e-2 --resim-stages=n_s+1 --resim-elements=2*elements"}},
+      {"ocp-accuracy",
+       {fesd_bench::ocpAccuracy,
+        "Showcase: terminal accuracy (fine FESD re-simulation of the optimal controls) vs CPU\n"
+        "    time, CSV. --intervals=30 --stages=1,2,3,4 --elements=1,2,3,4\n"
+        "    --methods=fesd,standard --budget=120 (s per solve) --reference-stages=4\n"
+        "    --reference-elements=8"}},
+      {"scaling",
+       {fesd_bench::scaling,
+        "Solve time vs N_ctrl (showcase) and vs bodies (lanes of pusher + puck, pruning on\n"
+        "    and off), CSV. --sweeps=intervals,bodies --intervals=10,20,30,40,60,80\n"
+        "    --lanes=1,2,3,4,6,8 --lane-intervals=10 --elements=2 --stages=2 --budget=120"}},
       {"order-pds",
        {fesd_bench::orderPds,
         "Example 1 (seed 000): terminal error vs step for FESD and standard, Radau-IIA.\n"

@@ -22,29 +22,34 @@ def fit(points):
     return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx
 
 
+def fitted_orders(rows, floor=1e-12, plateau=1e-9):
+    """{(method, n_s): (order, points used)} from order-pds CSV rows (dicts)."""
+    runs = defaultdict(list)
+    for row in rows:
+        if row["status"] == "ok":
+            runs[(row["method"], int(row["n_s"]))].append((float(row["h"]), float(row["error"])))
+    orders = {}
+    for key, points in runs.items():
+        kept = []
+        for h, error in sorted(points, reverse=True):
+            stalled = kept and error >= kept[-1][1] and error < plateau
+            if error <= floor or stalled:
+                break
+            kept.append((h, error))
+        orders[key] = (fit(kept) if len(kept) >= 2 else float("nan"), len(kept))
+    return orders
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("csv", nargs="?", type=argparse.FileType("r"), default=sys.stdin)
     parser.add_argument("--floor", type=float, default=1e-12)
     parser.add_argument("--plateau", type=float, default=1e-9)
     args = parser.parse_args()
-    runs = defaultdict(list)
-    for row in csv.DictReader(args.csv):
-        if row["status"] == "ok":
-            runs[(row["method"], int(row["n_s"]))].append((float(row["h"]), float(row["error"])))
-    groups = {}
-    for key, points in runs.items():
-        kept = []
-        for h, error in sorted(points, reverse=True):
-            stalled = kept and error >= kept[-1][1] and error < args.plateau
-            if error <= args.floor or stalled:
-                break
-            kept.append((h, error))
-        groups[key] = kept
+    orders = fitted_orders(csv.DictReader(args.csv), args.floor, args.plateau)
     print("method,n_s,points,fitted_order,expected_fesd_order")
-    for (method, stages), points in sorted(groups.items()):
-        order = fit(points) if len(points) >= 2 else float("nan")
-        print(f"{method},{stages},{len(points)},{order:.2f},{2 * stages - 1}")
+    for (method, stages), (order, points) in sorted(orders.items()):
+        print(f"{method},{stages},{points},{order:.2f},{2 * stages - 1}")
 
 
 if __name__ == "__main__":

@@ -1,0 +1,133 @@
+#!/usr/bin/python3
+"""Plots the benchmark CSVs of docs/benchmarks/ into PNGs beside them (matplotlib, Agg).
+
+Usage: plot_benchmarks.py [directory]. Reads what exists of order_pds.csv, siconos_example1.csv,
+ocp_accuracy.csv and scaling.csv; a missing file skips its plots.
+"""
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from fit_orders import fitted_orders  # noqa: E402
+
+STAGE_COLORS = {1: "tab:blue", 2: "tab:orange", 3: "tab:green", 4: "tab:red"}
+
+
+def read(directory, name):
+    path = os.path.join(directory, name)
+    if not os.path.exists(path):
+        print("plot_benchmarks: no %s, its plots are skipped" % path)
+        return []
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def ok(rows):
+    return [r for r in rows if r["status"] in ("ok", "success") and float(r["error"]) > 0]
+
+
+def series(rows, key):
+    """Rows grouped by key(row), each group sorted by its first column of interest later."""
+    groups = {}
+    for row in rows:
+        groups.setdefault(key(row), []).append(row)
+    return groups
+
+
+def save(figure, directory, name):
+    path = os.path.join(directory, name)
+    figure.tight_layout()
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+    print("plot_benchmarks: wrote " + path)
+
+
+def plot_example1(directory, order_rows, peer_rows):
+    rows = ok(order_rows)
+    orders = fitted_orders(order_rows)
+    figure, axes = plt.subplots(1, 2, figsize=(12, 5))
+    for (method, n_s), group in sorted(series(rows, lambda r: (r["method"], int(r["n_s"]))).items()):
+        group.sort(key=lambda r: float(r["h"]))
+        style = "-o" if method == "fesd" else "--s"
+        label = "%s n_s=%d (order %.2f)" % (method, n_s, orders[(method, n_s)][0])
+        color = STAGE_COLORS.get(n_s)
+        axes[0].loglog([float(r["h"]) for r in group], [float(r["error"]) for r in group], style,
+                       color=color, label=label, markersize=4)
+        axes[1].loglog([float(r["cpu_s"]) for r in group], [float(r["error"]) for r in group],
+                       style, color=color, label="%s n_s=%d" % (method, n_s), markersize=4)
+    for method, group in sorted(series(ok(peer_rows), lambda r: r["method"]).items()):
+        group.sort(key=lambda r: float(r["cpu_s"]))
+        axes[1].loglog([float(r["cpu_s"]) for r in group], [float(r["error"]) for r in group],
+                       ":^", color="black" if "0.5" in method else "gray", label=method,
+                       markersize=4)
+    axes[0].set(xlabel="h = T / N_FE", ylabel="terminal error |x(T) - (-1, 0)|",
+                title="Example 1: error vs step (Radau-IIA)")
+    axes[1].set(xlabel="CPU time [s]", ylabel="terminal error",
+                title="Example 1: error vs CPU time")
+    for axis in axes:
+        axis.grid(True, which="both", alpha=0.3)
+        axis.legend(fontsize=7)
+    save(figure, directory, "example1_work_precision.png")
+
+
+def plot_ocp_accuracy(directory, rows):
+    figure, axis = plt.subplots(figsize=(7, 5))
+    solved = [r for r in rows if r["status"] == "success"]
+    for (method, n_s), group in sorted(series(solved,
+                                              lambda r: (r["method"], int(r["n_s"]))).items()):
+        group.sort(key=lambda r: float(r["cpu_s"]))
+        axis.loglog([float(r["cpu_s"]) for r in group],
+                    [max(float(r["terminal_error"]), 1e-16) for r in group],
+                    "-o" if method == "fesd" else "--s", color=STAGE_COLORS.get(n_s),
+                    label="%s n_s=%d (N_FE=%s)" % (method, n_s,
+                                                   ",".join(r["n_fe"] for r in group)),
+                    markersize=4)
+    axis.set(xlabel="CPU time of the OCP solve [s]",
+             ylabel="terminal error vs a fine re-simulation",
+             title="Manipulation showcase (N_ctrl = %s)" % (rows[0]["intervals"] if rows else "?"))
+    axis.grid(True, which="both", alpha=0.3)
+    axis.legend(fontsize=7)
+    save(figure, directory, "ocp_work_precision.png")
+
+
+def plot_scaling(directory, rows):
+    figure, axes = plt.subplots(1, 2, figsize=(12, 5))
+    by_intervals = [r for r in rows if r["sweep"] == "intervals"]
+    axes[0].plot([int(r["intervals"]) for r in by_intervals],
+                 [float(r["cpu_s"]) for r in by_intervals], "-o", label="showcase, FESD")
+    axes[0].set(xlabel="N_ctrl", ylabel="CPU time [s]", title="Solve time vs N_ctrl")
+    for pruning, group in sorted(series([r for r in rows if r["sweep"] == "bodies"],
+                                        lambda r: r["pruning"]).items()):
+        axes[1].plot([int(r["bodies"]) for r in group], [float(r["cpu_s"]) for r in group],
+                     "-o" if pruning == "on" else "--s", label="pruning " + pruning)
+    axes[1].set(xlabel="bodies (lanes of pusher + puck)", ylabel="CPU time [s]",
+                title="Solve time vs bodies")
+    for axis in axes:
+        axis.grid(True, alpha=0.3)
+        axis.legend()
+    save(figure, directory, "scaling.png")
+
+
+def main():
+    directory = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
+        os.path.dirname(os.path.abspath(__file__)), "..", "docs", "benchmarks")
+    order_rows = read(directory, "order_pds.csv")
+    if order_rows:
+        plot_example1(directory, order_rows, read(directory, "siconos_example1.csv"))
+    accuracy_rows = read(directory, "ocp_accuracy.csv")
+    if accuracy_rows:
+        plot_ocp_accuracy(directory, accuracy_rows)
+    scaling_rows = read(directory, "scaling.csv")
+    if scaling_rows:
+        plot_scaling(directory, scaling_rows)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

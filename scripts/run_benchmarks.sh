@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Regenerates every benchmark table and plot in docs/benchmarks/ (CSV + PNG): installs what is
+# missing, builds (Release), runs the sweeps, plots. Takes about an hour on a 2-core machine.
+# scripts/run_benchmarks.sh [order|siconos|ocp|scaling ...] (default: all of them)
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+install_dependencies
+build_workspace
+source_workspace
+OUT="$REPO_DIR/docs/benchmarks"
+mkdir -p "$OUT"
+PARTS=("$@")
+((${#PARTS[@]})) || PARTS=(order siconos ocp scaling)
+for part in "${PARTS[@]}"; do
+  echo "== $part"
+  case "$part" in
+    order)
+      rosrun fesd_trajopt fesd_bench order-pds --repeat=3 >"$OUT/order_pds.csv"
+      "$ROS_PYTHON" "$REPO_DIR/scripts/fit_orders.py" "$OUT/order_pds.csv" >"$OUT/orders.csv"
+      ;;
+    siconos)
+      if [ -x "$WS_DIR/devel/lib/fesd_trajopt/siconos_example1" ]; then
+        rosrun fesd_trajopt siconos_example1 --repeat=3 >"$OUT/siconos_example1.csv"
+      else
+        echo "Siconos was not found at build time: the peer benchmark is skipped"
+      fi
+      ;;
+    ocp) rosrun fesd_trajopt fesd_bench ocp-accuracy >"$OUT/ocp_accuracy.csv" ;;
+    scaling) rosrun fesd_trajopt fesd_bench scaling >"$OUT/scaling.csv" ;;
+    *) echo "unknown part '$part' (order, siconos, ocp, scaling)" >&2; exit 2 ;;
+  esac
+done
+"$ROS_PYTHON" "$REPO_DIR/scripts/plot_benchmarks.py" "$OUT"
