@@ -24,8 +24,8 @@ for part in "${PARTS[@]}"; do
         echo "Siconos was not found at build time: the peer benchmark is skipped"
       fi
       ;;
-    ocp) rosrun fesd_trajopt fesd_bench ocp-accuracy >"$OUT/ocp_accuracy.csv" ;;
-    scaling) rosrun fesd_trajopt fesd_bench scaling >"$OUT/scaling.csv" ;;
+    ocp) rosrun fesd_trajopt fesd_bench ocp-accuracy --budget=60 >"$OUT/ocp_accuracy.csv" ;;
+    scaling) rosrun fesd_trajopt fesd_bench scaling --budget=60 >"$OUT/scaling.csv" ;;
     *) echo "unknown part '$part' (order, siconos, ocp, scaling)" >&2; exit 2 ;;
   esac
 done
