@@ -70,10 +70,8 @@ std::string formatNumber(double value) {
 
 bool isAllowed(const SceneTask& task, const ContactPair& pair) {
   return task.allowed_pairs.empty() ||
-         std::any_of(task.allowed_pairs.begin(), task.allowed_pairs.end(),
-                     [&](const ContactPair& p) {
-                       return p.body == pair.body && p.kind == pair.kind && p.other == pair.other;
-                     });
+         std::find(task.allowed_pairs.begin(), task.allowed_pairs.end(), pair) !=
+             task.allowed_pairs.end();
 }
 
 /// A lower bound on the gap between a pair's surfaces during the task, each body within its
@@ -213,10 +211,8 @@ std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
     }
   }
   for (const ContactPair& allowed : task.allowed_pairs) {
-    const bool known = std::any_of(all.begin(), all.end(), [&](const ContactPair& p) {
-      return p.body == allowed.body && p.kind == allowed.kind && p.other == allowed.other;
-    });
-    if (!known) return "an allowed contact pair does not exist in the scene";
+    if (std::find(all.begin(), all.end(), allowed) == all.end())
+      return "an allowed contact pair does not exist in the scene";
   }
   return "";
 }

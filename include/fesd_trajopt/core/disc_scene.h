@@ -40,6 +40,10 @@ struct ContactPair {
   int body;
   Kind kind;
   int other;  ///< index into bodies, obstacles or walls
+
+  bool operator==(const ContactPair& o) const {
+    return body == o.body && kind == o.kind && other == o.other;
+  }
 };
 
 /// Bodies, obstacles and walls in the plane or in space, as a projected dynamical system:
