@@ -25,7 +25,8 @@ const std::map<std::string, Command>& commands() {
        {fesd_bench::ocpManipulation,
         "The collaborative manipulation OCP (seed 000 Sec. IV-B), key=value per run.\n"
         "    --intervals=30 --elements=3 --stages=2 --fesd=true --repeat=1 --step-bound=0.5\n"
-        "    --fixed-grid-until=1e-2 --resim-stages=n_s+1 --resim-elements=2*elements"}},
+        "    --fixed-grid-until=1e-2 --resim-stages=n_s+1 --resim-elements=2*elements\n"
+        "    --divergence (per interval: OCP vs fine re-simulation, fine vs twice finer)"}},
       {"ocp-accuracy",
        {fesd_bench::ocpAccuracy,
         "Showcase: terminal accuracy (fine FESD re-simulation of the optimal controls) vs CPU\n"

@@ -1,6 +1,7 @@
 // ocp-manipulation: seed 000 Sec. IV-B, the collaborative manipulation OCP. One line of
 // key=value pairs per run.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -9,6 +10,44 @@
 #include "fesd_trajopt/core/ocp_solver.h"
 
 namespace fesd_bench {
+namespace {
+
+/// The state of a trajectory at an element boundary time (every control interval boundary is one).
+const Eigen::VectorXd& stateAt(const fesd::Trajectory& trajectory, double time) {
+  const auto closest = std::min_element(
+      trajectory.times.begin(), trajectory.times.end(),
+      [time](double a, double b) { return std::abs(a - time) < std::abs(b - time); });
+  return trajectory.states[closest - trajectory.times.begin()];
+}
+
+/// Where the re-simulation error comes from: per control interval boundary, the distance of the
+/// OCP's state from the fine re-simulation and that of the fine from a twice finer one. Errors
+/// made early and amplified by the dynamics grow in both columns alike.
+void printDivergence(const fesd::OcpDefinition& ocp, const fesd::OcpSolution& solution,
+                     const fesd::SimulationOptions& fine) {
+  fesd::SimulationOptions finer = fine;
+  finer.discretization.num_elements *= 2;
+  std::vector<fesd::Trajectory> simulations;
+  for (const fesd::SimulationOptions& options : {fine, finer}) {
+    const fesd::SimulationResult result =
+        fesd::FesdIntegrator(ocp.model, options)
+            .simulate(ocp.initial_state, ocp.horizon, ocp.num_intervals,
+                      solution.trajectory.controls);
+    if (result.status != fesd::SolveStatus::kSuccess) {
+      std::printf("divergence: re-simulation failed: %s\n", result.message.c_str());
+      return;
+    }
+    simulations.push_back(result.trajectory);
+  }
+  for (const double time : solution.trajectory.interval_times) {
+    const Eigen::VectorXd& planned = stateAt(solution.trajectory, time);
+    const Eigen::VectorXd& simulated = stateAt(simulations[0], time);
+    std::printf("divergence t=%.4f ocp_vs_fine=%.3e fine_vs_finer=%.3e\n", time,
+                (planned - simulated).norm(), (simulated - stateAt(simulations[1], time)).norm());
+  }
+}
+
+}  // namespace
 
 int ocpManipulation(const Arguments& args) {
   const int intervals = args.integer("intervals", 30);
@@ -24,6 +63,7 @@ int ocpManipulation(const Arguments& args) {
       args.integer("resim-stages", options.discretization.num_stages + 1);
   fine.discretization.num_elements =
       args.integer("resim-elements", 2 * options.discretization.num_elements);
+  const bool divergence = args.flag("divergence", false);
   args.rejectUnused();
 
   const fesd::OcpDefinition ocp = fesd::manipulation_example::ocp(intervals);
@@ -50,6 +90,7 @@ int ocpManipulation(const Arguments& args) {
         report.ipopt_seconds, report.evaluation_seconds, report.history.size(), intervals,
         options.discretization.num_elements, options.discretization.num_stages,
         options.discretization.switch_detection ? "fesd" : "standard");
+    if (divergence) printDivergence(ocp, solution, fine);
     std::fflush(stdout);
   }
   std::sort(walls.begin(), walls.end());
