@@ -341,7 +341,10 @@ void FesdDiscretization::equilibrateActiveSet(const double* x) {
   auto nonzero = [&](const LinearExpression& sum) {
     for (const LinearTerm& t : sum) {
       const double lower = nlp_.variableLower(t.variable);
-      if (lower != nlp_.variableUpper(t.variable) || std::fabs(lower) > 1e-9) return true;
+      if (lower != nlp_.variableUpper(t.variable) ||
+          std::fabs(lower) > NlpAssembly::kNegligibleFixedValue) {
+        return true;
+      }
     }
     return false;
   };

@@ -332,12 +332,25 @@ bool NlpAssembly::fixActiveSet(const double* x, int flip) {
   const int pairs = static_cast<int>(complementarities_.size());
   std::vector<bool> left_is_zero(pairs);
   std::vector<double> ambiguity(pairs);
+  // A side with a fixed nonzero term (data, e.g. c or lambda at a step's start point) cannot
+  // vanish, so the other side must, however small this side is at x.
+  const auto canVanish = [this](const std::vector<LinearTerm>& side) {
+    for (const LinearTerm& t : side) {
+      const double value = x_lower_[t.variable];
+      if (value == x_upper_[t.variable] && std::fabs(value) > kNegligibleFixedValue) return false;
+    }
+    return true;
+  };
   for (int p = 0; p < pairs; ++p) {
-    const double left = evaluateLinear(complementarities_[p].left, x);
-    const double right = evaluateLinear(complementarities_[p].right, x);
-    left_is_zero[p] = left <= right;
+    const Complementarity& comp = complementarities_[p];
+    const bool left_can_vanish = canVanish(comp.left), right_can_vanish = canVanish(comp.right);
+    if (!left_can_vanish && !right_can_vanish) return false;
+    const double left = evaluateLinear(comp.left, x);
+    const double right = evaluateLinear(comp.right, x);
+    left_is_zero[p] = left_can_vanish && (left <= right || !right_can_vanish);
     const double larger = std::max(std::fabs(left), std::fabs(right));
-    ambiguity[p] = larger > 0.0 ? std::min(std::fabs(left), std::fabs(right)) / larger : 0.0;
+    const bool decided = !left_can_vanish || !right_can_vanish || larger == 0.0;
+    ambiguity[p] = decided ? 0.0 : std::min(std::fabs(left), std::fabs(right)) / larger;
   }
   if (flip >= 0) {
     std::vector<int> order(pairs);

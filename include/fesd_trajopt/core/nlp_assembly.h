@@ -39,6 +39,9 @@ class NlpAssembly : public RelaxedMpcc {
  public:
   static constexpr int kObjective = -1;  ///< "row" of a function term that feeds the objective
   static constexpr double kInfinity = 1e20;
+  /// A fixed variable (data, or a side fixed by fixActiveSet) of at most this size counts as
+  /// zero in active-set decisions: c(x) at a point on a curved boundary is zero only to rounding.
+  static constexpr double kNegligibleFixedValue = 1e-9;
 
   /// Adds `count` variables with common bounds and initial value; returns the first index.
   int addVariables(int count, double lower, double upper, double initial = 0.0);

@@ -40,11 +40,12 @@ class RelaxedMpcc : public NlpProblem {
   /// Constraint rows of the complementarity products.
   virtual const std::vector<int>& complementarityRows() const = 0;
   /// Active-set polishing: fixes, through variable bounds, the side of every complementarity
-  /// pair that is zero at x (the smaller one) and drops the pair, leaving a smooth NLP whose
-  /// solutions satisfy the complementarity exactly. `flip` >= 0 reverses the choice for the
-  /// flip-th most ambiguous pair (largest min/max ratio of its two sides), for a retry after a
-  /// failed attempt. Returns false (and changes nothing) when a zero side is not a sum of
-  /// nonnegative free variables, or when there is no such ambiguous pair to flip.
+  /// pair that is zero at x (the smaller one, unless it holds a fixed nonzero term) and drops
+  /// the pair, leaving a smooth NLP whose solutions satisfy the complementarity exactly. `flip`
+  /// >= 0 reverses the choice for the flip-th most ambiguous pair (largest min/max ratio of its
+  /// two sides), for a retry after a failed attempt. Returns false (and changes nothing) when a
+  /// zero side is not a sum of nonnegative free variables, when both sides of a pair hold fixed
+  /// nonzero terms, or when there is no such ambiguous pair to flip.
   virtual bool fixActiveSet(const double* x, int flip = -1) = 0;
   /// Undoes fixActiveSet.
   virtual void releaseActiveSet() = 0;
