@@ -73,12 +73,17 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
   for (int k = 0; k < c0.size(); ++k) initially_active[k] = c0(k) <= options_.activity_tolerance;
   result.trajectory.switches =
       detectSwitches(result.trajectory.elements, initially_active, options_.activity_tolerance);
+  result.trajectory.unresolved_switches =
+      findUnresolvedSwitches(result.trajectory.elements, options_.activity_tolerance);
   if (result.status == SolveStatus::kSuccess) {
     std::ostringstream message;
     message << "simulated " << num_steps << " step(s): " << result.totals.iterations
             << " Ipopt iterations, " << result.trajectory.switches.size() << " switch(es)";
     if (result.retried_steps > 0) message << ", " << result.retried_steps << " step(s) retried";
     result.message = message.str();
+  }
+  if (!result.trajectory.switchesResolved()) {
+    result.message += "; " + describeUnresolvedSwitches(result.trajectory.unresolved_switches);
   }
   result.totals.status = result.status;
   result.totals.message = result.message;

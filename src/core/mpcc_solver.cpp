@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "fesd_trajopt/core/stopwatch.h"
 #include "ipopt_session.h"
@@ -76,7 +77,11 @@ IpoptSession::SolveSettings initialSettings(const HomotopyOptions& options,
   const double budget = wall_time_budget >= 0.0 ? wall_time_budget : options.wall_time_budget;
   // A deadline of exactly now still stops the first solve at its first iteration.
   if (std::isfinite(budget)) settings.deadline_seconds = steadySeconds() + std::max(budget, 1e-9);
-  const double size = std::fabs(problem.objective(guess.data()));
+  double size = std::numeric_limits<double>::quiet_NaN();
+  try {  // a problem that cannot be evaluated at the guess is Ipopt's to report
+    size = std::fabs(problem.objective(guess.data()));
+  } catch (const std::exception&) {
+  }
   settings.objective_scaling = options.objective_scaling > 0.0 ? options.objective_scaling
                                : std::isfinite(size) && size > options.objective_scale_target
                                    ? options.objective_scale_target / size
@@ -185,7 +190,8 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
   double sigma = sigma_initial > 0.0 ? sigma_initial : options_.sigma_initial;
   // The converged relaxed NLP with the smallest residual, for a polishing rescue.
   PrimalDualPoint best;
-  double best_residual = std::numeric_limits<double>::infinity(), best_sigma = sigma;
+  double best_residual = std::numeric_limits<double>::infinity(), best_sigma = sigma,
+         best_objective = 0.0;
   for (int step = 0; step < steps; ++step) {
     problem.setRelaxation(sigma);
     settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma;
@@ -210,6 +216,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
       best = point;
       best_residual = residual;
       best_sigma = sigma;
+      best_objective = outcome.objective;
     }
     if (converged && residual <= options_.complementarity_tolerance) {
       report.status = SolveStatus::kSuccess;
@@ -220,6 +227,15 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     if (!converged && !options_.continue_after_failure) break;
     sigma *= options_.sigma_reduction;
     if (sigma < options_.minimum_sigma) break;
+  }
+  if (report.status == SolveStatus::kTimeout && std::isfinite(best_residual)) {
+    // The interrupted NLP's iterate solves nothing yet: the best converged relaxed NLP is the
+    // best iterate there is.
+    report.solution = best.x;
+    report.multipliers = {best.bound_lower_multipliers, best.bound_upper_multipliers,
+                          best.constraint_multipliers};
+    report.objective = best_objective;
+    report.complementarity_residual = best_residual;
   }
   if (!smooth && options_.polish_active_set) {
     settings.tolerance = options_.ipopt.tolerance;

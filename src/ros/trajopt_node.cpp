@@ -35,13 +35,25 @@ Discretization discretization(const Request& request, const NodeConfig& config) 
   return d;
 }
 
+/// An answer without a solve: the status and why, also in the solution.
+template <class Response>
+void answerUnsolved(Response& response, uint8_t status, const std::string& message) {
+  response.status = status;
+  response.message = message;
+  response.solution.status = status;
+  response.solution.message = message;
+  ROS_WARN_STREAM("fesd_trajopt: " << message);
+}
+
 template <class Response>
 void refuse(Response& response, const std::string& why) {
-  response.status = kInvalidRequest;
-  response.message = "invalid request: " + why;
-  response.solution.status = kInvalidRequest;
-  response.solution.message = response.message;
-  ROS_WARN_STREAM("fesd_trajopt: " << response.message);
+  answerUnsolved(response, kInvalidRequest, "invalid request: " + why);
+}
+
+/// A valid request that asks for the impossible.
+template <class Response>
+void answerInfeasible(Response& response, const std::string& why) {
+  answerUnsolved(response, statusCode(fesd::SolveStatus::kInfeasible), "infeasible: " + why);
 }
 
 template <class Response>
@@ -114,6 +126,8 @@ void TrajoptNode::handleSolve(const fesd_trajopt::SolveTrajectory::Request& requ
   if (!(budget > 0.0)) return refuse(response, "the wall-time budget must be > 0");
   const std::string problem = fesd::validateTask(task, config_.limits);
   if (!problem.empty()) return refuse(response, problem);
+  const std::string infeasible = fesd::infeasibility(task);
+  if (!infeasible.empty()) return answerInfeasible(response, infeasible);
 
   const std::vector<fesd::PairDecision> decisions = fesd::decidePairs(task);
   const fesd::MovingPart part = fesd::movingPart(task, decisions);
@@ -137,6 +151,7 @@ void TrajoptNode::handleSolve(const fesd_trajopt::SolveTrajectory::Request& requ
   const fesd::OcpSolution solution = solver.solve();
   response.solution = sceneSolution(
       task, decisions, fesd::fullSceneTrajectory(task, part, solution.trajectory), solution.report);
+  response.solution.message = solution.message;  // with the warning on unresolved switches
   const fesd::NlpAssembly& nlp = solver.discretization().nlp();
   response.solution.statistics.nlp_variables = nlp.numVariables();
   response.solution.statistics.nlp_constraints = nlp.numConstraints();

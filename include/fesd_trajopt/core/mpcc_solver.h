@@ -103,8 +103,10 @@ struct MpccReport {
   SolveStatus status = SolveStatus::kSolverError;
   std::string message;
   std::vector<HomotopyStep> history;
-  std::vector<double> solution;  ///< the last accepted iterate
-  NlpMultipliers multipliers;    ///< its multipliers
+  /// The last accepted iterate; after a timeout the best one: the converged relaxed NLP with
+  /// the smallest residual, else the interrupted NLP's last iterate.
+  std::vector<double> solution;
+  NlpMultipliers multipliers;  ///< its multipliers
   double objective = 0.0;
   double complementarity_residual = 0.0;
   int iterations = 0;     ///< Ipopt iterations over all homotopy steps
