@@ -12,7 +12,7 @@ from fesd_trajopt.srv import (Simulate, SimulateRequest, SolveTrajectory,
 from geometry_msgs.msg import Point, Vector3
 from visualization_msgs.msg import MarkerArray
 
-SUCCESS, INVALID_REQUEST = 0, 6
+SUCCESS, INFEASIBLE, TIMEOUT, INVALID_REQUEST = 0, 2, 3, 6
 SOLVE = "/fesd_trajopt/solve_trajectory"
 SIMULATE = "/fesd_trajopt/simulate"
 
@@ -133,6 +133,64 @@ class NodeServices(unittest.TestCase):
         self.assertEqual(after.status, SUCCESS, after.message)
         bad = self.simulate(SimulateRequest(system="pendulum"))
         self.assertEqual(bad.status, INVALID_REQUEST)
+
+    def test_impossible_targets_are_infeasible_not_solved(self):
+        inf = float("inf")
+        cases = [
+            ([body("object", workspace_upper=[inf, 5.0])], "outside its workspace"),
+            ([body("actuator_1", target=Point(-1000, 0, 0), target_weight=1.0)],
+             "cannot reach its target"),
+        ]
+        for bodies, keyword in cases:
+            request = SolveTrajectoryRequest()
+            request.bodies = bodies
+            response = self.solve(request)
+            self.assertEqual(response.status, INFEASIBLE, response.message)
+            self.assertEqual(response.solution.status, INFEASIBLE)
+            self.assertIn(keyword, response.message)
+
+    def test_a_tiny_wall_time_budget_times_out_with_a_finite_iterate(self):
+        request = SolveTrajectoryRequest()
+        request.has_wall_time_budget, request.wall_time_budget = True, 1e-3
+        response = self.solve(request)
+        self.assertEqual(response.status, TIMEOUT, response.message)
+        self.assertIn("timeout", response.message)
+        self.assertLess(response.solution.statistics.wall_time, 10.0)
+        self.assertEqual(len(response.solution.states),
+                         len(response.solution.times) * response.solution.state_dimension)
+        self.assertTrue(all(math.isfinite(v) for v in response.solution.states))
+
+    def test_switches_inside_elements_are_flagged_not_presented_as_resolved(self):
+        self.assertTrue(self.default.solution.switches_resolved)
+        self.assertEqual(list(self.default.solution.unresolved_elements), [])
+        request = small_default(10)
+        request.method = SolveTrajectoryRequest.METHOD_STANDARD  # no switch detection
+        response = self.solve(request)
+        self.assertFalse(response.solution.switches_resolved, response.message)
+        self.assertIn("unresolved switch", response.message)
+        steps = len(response.solution.step_lengths)
+        self.assertTrue(all(e < steps for e in response.solution.unresolved_elements))
+        self.assertGreater(len(response.solution.unresolved_elements), 0)
+
+    def test_twenty_repeats_of_one_request_are_bitwise_identical(self):
+        request = SolveTrajectoryRequest()
+        request.urdf_param = "/three_disc_scene"
+        request.bodies = [body("pusher", role=BodySpec.ROLE_ACTUATED, max_speed=3.0),
+                          body("puck", target=Point(1.0, 0, 0), target_weight=10.0)]
+        request.has_horizon, request.horizon = True, 2.0
+        request.has_num_intervals, request.num_intervals = True, 4
+        request.has_num_elements, request.num_elements = True, 2
+        first = self.solve(request)
+        self.assertEqual(first.status, SUCCESS, first.message)
+        self.assertTrue(first.solution.switches)
+        for _ in range(19):
+            again = self.solve(request)
+            self.assertEqual(again.status, first.status)
+            self.assertEqual(again.solution.states, first.solution.states)
+            self.assertEqual(again.solution.statistics.objective,
+                             first.solution.statistics.objective)
+            self.assertEqual(again.solution.statistics.ipopt_iterations,
+                             first.solution.statistics.ipopt_iterations)
 
     def test_markers_arrive_with_the_expected_namespaces(self):
         markers = rospy.wait_for_message("/fesd_trajopt/markers", MarkerArray, timeout=30.0)
