@@ -32,6 +32,17 @@ def small_default(intervals=10):
     return request
 
 
+def three_disc_request(target_x, intervals):
+    """The three-disc URDF scene: the pusher drives the puck to (target_x, 0) in 2 s."""
+    request = SolveTrajectoryRequest()
+    request.urdf_param = "/three_disc_scene"
+    request.bodies = [body("pusher", role=BodySpec.ROLE_ACTUATED, max_speed=3.0),
+                      body("puck", target=Point(target_x, 0, 0), target_weight=10.0)]
+    request.has_horizon, request.horizon = True, 2.0
+    request.has_num_intervals, request.num_intervals = True, intervals
+    return request
+
+
 class NodeServices(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -91,13 +102,7 @@ class NodeServices(unittest.TestCase):
         self.assertIn(("puck", "floor"), names)
 
     def test_scene_from_a_urdf_parameter(self):
-        request = SolveTrajectoryRequest()
-        request.urdf_param = "/three_disc_scene"
-        request.bodies = [body("pusher", role=BodySpec.ROLE_ACTUATED, max_speed=3.0),
-                          body("puck", target=Point(1.5, 0, 0), target_weight=10.0)]
-        request.has_horizon, request.horizon = True, 2.0
-        request.has_num_intervals, request.num_intervals = True, 10
-        response = self.solve(request)
+        response = self.solve(three_disc_request(1.5, 10))
         self.assertEqual(response.status, SUCCESS, response.message)
         self.assertIn("decoration", response.message)  # the link without collision geometry
         self.assertEqual(response.solution.statistics.complementarity_residual, 0.0)
@@ -173,12 +178,7 @@ class NodeServices(unittest.TestCase):
         self.assertGreater(len(response.solution.unresolved_elements), 0)
 
     def test_twenty_repeats_of_one_request_are_bitwise_identical(self):
-        request = SolveTrajectoryRequest()
-        request.urdf_param = "/three_disc_scene"
-        request.bodies = [body("pusher", role=BodySpec.ROLE_ACTUATED, max_speed=3.0),
-                          body("puck", target=Point(1.0, 0, 0), target_weight=10.0)]
-        request.has_horizon, request.horizon = True, 2.0
-        request.has_num_intervals, request.num_intervals = True, 4
+        request = three_disc_request(1.0, 4)
         request.has_num_elements, request.num_elements = True, 2
         first = self.solve(request)
         self.assertEqual(first.status, SUCCESS, first.message)

@@ -46,6 +46,12 @@ void MpccReport::addEffort(const MpccReport& other) {
   evaluation_seconds += other.evaluation_seconds;
 }
 
+int MpccReport::failedSteps() const {
+  int failed = 0;
+  for (const HomotopyStep& step : history) failed += !step.converged;
+  return failed;
+}
+
 void MpccReport::accumulate(const MpccReport& other) {
   addEffort(other);
   complementarity_residual = std::max(complementarity_residual, other.complementarity_residual);
@@ -102,7 +108,8 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
     problem.releaseActiveSet();
     const double residual = problem.complementarityResidual(point.x.data());
     report.history.push_back({0.0, outcome.iterations, residual, outcome.objective,
-                              IpoptSession::statusName(outcome.status), outcome.wall_seconds});
+                              IpoptSession::statusName(outcome.status), outcome.wall_seconds,
+                              IpoptSession::converged(outcome.status)});
     report.iterations += outcome.iterations;
     report.evaluation_seconds += outcome.evaluation_seconds;
     report.ipopt_seconds += outcome.wall_seconds - outcome.evaluation_seconds;
@@ -192,6 +199,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
   PrimalDualPoint best;
   double best_residual = std::numeric_limits<double>::infinity(), best_sigma = sigma,
          best_objective = 0.0;
+  int consecutive_failures = 0;
   for (int step = 0; step < steps; ++step) {
     problem.setRelaxation(sigma);
     settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma;
@@ -202,7 +210,8 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     const NlpOutcome outcome = session_->solve(problem, point, settings);
     const double residual = problem.complementarityResidual(point.x.data());
     report.history.push_back({sigma, outcome.iterations, residual, outcome.objective,
-                              IpoptSession::statusName(outcome.status), outcome.wall_seconds});
+                              IpoptSession::statusName(outcome.status), outcome.wall_seconds,
+                              IpoptSession::converged(outcome.status)});
     report.iterations += outcome.iterations;
     report.evaluation_seconds += outcome.evaluation_seconds;
     report.ipopt_seconds += outcome.wall_seconds - outcome.evaluation_seconds;
@@ -224,7 +233,11 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     }
     report.status = converged ? SolveStatus::kComplementarityNotMet : failureStatus(outcome.status);
     if (report.status == SolveStatus::kTimeout) break;
-    if (!converged && !options_.continue_after_failure) break;
+    consecutive_failures = converged ? 0 : consecutive_failures + 1;
+    if (!converged && (!options_.continue_after_failure ||
+                       consecutive_failures >= options_.max_consecutive_failures)) {
+      break;
+    }
     sigma *= options_.sigma_reduction;
     if (sigma < options_.minimum_sigma) break;
   }
