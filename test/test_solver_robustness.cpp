@@ -89,9 +89,9 @@ TEST(SolverRobustness, ProblemsThatFailEverywhereEndWithSolverErrorNotACrash) {
     problem.nlp.fault_to = 1e9;
     const fesd::MpccReport report = problem.solve();
     EXPECT_EQ(report.status, fesd::SolveStatus::kSolverError) << report.message;
-    // Three failures in a row end the homotopy (HomotopyOptions::max_consecutive_failures).
-    EXPECT_EQ(report.history.size(), 3u);
-    EXPECT_EQ(report.failedSteps(), 3);
+    // Six failures in a row end the homotopy (HomotopyOptions::max_consecutive_failures).
+    EXPECT_EQ(report.history.size(), 6u);
+    EXPECT_EQ(report.failedSteps(), 6);
     EXPECT_NE(report.message.find(fault == FaultyAssembly::Fault::kThrowInSetup
                                       ? "non_ipopt_exception"
                                       : "invalid_number_detected"),
