@@ -1,12 +1,13 @@
 #!/usr/bin/python3
 """Integration tests of the fesd_trajopt node: services, statuses, markers, concurrency."""
 import math
+import random
 import threading
 import unittest
 
 import rospy
 import rostest
-from fesd_trajopt.msg import BodySpec, BodyTrajectory, ContactPair, SwitchEvent, Wall
+from fesd_trajopt.msg import BodySpec, BodyTrajectory, ContactPair, Obstacle, SwitchEvent, Wall
 from fesd_trajopt.srv import (Simulate, SimulateRequest, SolveTrajectory,
                               SolveTrajectoryRequest)
 from geometry_msgs.msg import Point, Vector3
@@ -40,6 +41,42 @@ def three_disc_request(target_x, intervals):
                       body("puck", target=Point(target_x, 0, 0), target_weight=10.0)]
     request.has_horizon, request.horizon = True, 2.0
     request.has_num_intervals, request.num_intervals = True, intervals
+    return request
+
+
+def random_request(rng):
+    """A request with random, often broken fields, kept small enough to solve quickly."""
+    nasty = [0.0, -1.0, 1e-300, 1e300, float("inf"), -float("inf"), float("nan")]
+
+    def number(low, high):
+        return rng.uniform(low, high) if rng.random() < 0.8 else rng.choice(nasty)
+
+    def point():
+        return Point(number(-15, 15), number(-15, 15), number(-1, 1))
+
+    names = ["actuator_1", "actuator_2", "object", "extra", ""]
+    request = SolveTrajectoryRequest()
+    for _ in range(rng.randint(0, 3)):
+        spec = body(rng.choice(names), add=rng.random() < 0.3, radius=number(0.1, 2.0),
+                    initial_position=point(), override_initial_position=rng.random() < 0.3,
+                    role=rng.randint(0, 3), max_speed=number(0, 10), target=point(),
+                    target_weight=number(0, 10) if rng.random() < 0.5 else 0.0,
+                    clear_target=rng.random() < 0.2)
+        spec.workspace_lower = [number(-20, 0) for _ in range(rng.choice([0, 2, 2, 3]))]
+        spec.workspace_upper = [number(0, 20) for _ in range(rng.choice([0, 2, 2, 3]))]
+        request.bodies.append(spec)
+    for i in range(rng.randint(0, 1)):
+        request.obstacles.append(Obstacle(name="o%d" % i, radius=number(0.1, 1), position=point()))
+    for i in range(rng.randint(0, 1)):
+        request.walls.append(Wall(name="w%d" % i, normal=Vector3(number(-1, 1), number(-1, 1), 0),
+                                  offset=number(-30, -20)))
+    if rng.random() < 0.2:
+        request.allowed_pairs = [ContactPair(first=rng.choice(names), second=rng.choice(names))]
+    request.has_horizon, request.horizon = rng.random() < 0.5, number(0.5, 3.0)
+    request.has_num_intervals, request.num_intervals = True, rng.choice([0, 1, 2, 3])
+    request.has_num_elements, request.num_elements = True, rng.choice([0, 1, 2, 9])
+    request.method = rng.choice([0, 1, 2, 7])
+    request.has_wall_time_budget, request.wall_time_budget = True, number(0.5, 1.0)
     return request
 
 
@@ -191,6 +228,24 @@ class NodeServices(unittest.TestCase):
                              first.solution.statistics.objective)
             self.assertEqual(again.solution.statistics.ipopt_iterations,
                              first.solution.statistics.ipopt_iterations)
+
+    def test_random_broken_requests_all_get_a_status_and_a_message(self):
+        rng = random.Random(6)
+        statuses = {}
+        for _ in range(150):
+            response = self.solve(random_request(rng))
+            self.assertIn(response.status, range(7), response.message)
+            statuses[response.status] = statuses.get(response.status, 0) + 1
+            if response.status == INVALID_REQUEST:
+                self.assertTrue(response.message.startswith("invalid request: "),
+                                response.message)
+            if response.status != SUCCESS:
+                self.assertGreater(len(response.message), 20)
+            self.assertTrue(all(math.isfinite(v) for v in response.solution.states))
+        self.assertGreater(statuses.get(INVALID_REQUEST, 0), 0)
+        self.assertGreater(statuses.get(SUCCESS, 0), 0, statuses)
+        after = self.simulate(SimulateRequest(system="circle_example"))
+        self.assertEqual(after.status, SUCCESS, after.message)
 
     def test_markers_arrive_with_the_expected_namespaces(self):
         markers = rospy.wait_for_message("/fesd_trajopt/markers", MarkerArray, timeout=30.0)
