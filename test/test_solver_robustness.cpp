@@ -21,15 +21,17 @@ class FaultyAssembly : public fesd::NlpAssembly {
   enum class Fault { kNaN, kThrow, kThrowInSetup };
   Fault fault = Fault::kNaN;
   double fault_from = 0.0, fault_to = -1.0;
-  /// A slow problem: every objective evaluation at sigma < 1 sleeps this long.
-  double evaluation_delay = 0.0;
+  /// A slow problem: objective evaluations at sigma < slow_below, after the first
+  /// fast_evaluations, sleep this long.
+  double evaluation_delay = 0.0, slow_below = 1.0;
+  int fast_evaluations = 0;
 
   void setRelaxation(double sigma) override {
     sigma_ = sigma;
     NlpAssembly::setRelaxation(sigma);
   }
   double objective(const double* x) const override {
-    if (evaluation_delay > 0.0 && sigma_ < 1.0) {
+    if (evaluation_delay > 0.0 && sigma_ < slow_below && ++evaluations_ > fast_evaluations) {
       std::this_thread::sleep_for(std::chrono::duration<double>(evaluation_delay));
     }
     if (faulty() && fault == Fault::kNaN) return std::nan("");
@@ -45,6 +47,7 @@ class FaultyAssembly : public fesd::NlpAssembly {
  private:
   bool faulty() const { return fault_from <= sigma_ && sigma_ <= fault_to; }
   double sigma_ = 1.0;
+  mutable int evaluations_ = 0;
 };
 
 using FaultyCorner = fesd_test::CornerMpcc<FaultyAssembly>;
@@ -128,6 +131,30 @@ TEST(SolverRobustness, ATimeoutReturnsTheBestConvergedRelaxedSolution) {
   EXPECT_LE(x * y, best_sigma * (1.0 + 1e-6));
   EXPECT_NEAR(report.objective, (x - 1.0) * (x - 1.0) + (y - 1.0) * (y - 1.0), 1e-9);
   ::testing::Test::RecordProperty("timeout_wall_seconds", std::to_string(report.wall_seconds));
+}
+
+TEST(SolverRobustness, ATimeoutBeforeAnyConvergenceKeepsTheMoreFeasibleOfStartAndIterate) {
+  // On the circle x^2 + y^2 = 1 from the feasible start (0.6, 0.8); after three quick objective
+  // evaluations each takes 0.3 s, so a 0.2 s budget stops the first NLP after an iteration or
+  // two. Ipopt's iterate then lies off the circle (its steps follow the tangent): the start is
+  // the better point to return.
+  FaultyCorner problem;
+  const int row = problem.nlp.addRows(1, 1.0, 1.0);
+  problem.nlp.addFunctionTerm(
+      fesd::QuadraticFunction::weightedDistance(Eigen::Vector2d::Ones(), Eigen::Vector2d::Zero()),
+      {problem.x, problem.y}, -1, {{row, 1.0}});
+  problem.nlp.evaluation_delay = 0.3;
+  problem.nlp.slow_below = 2.0;
+  problem.nlp.fast_evaluations = 3;
+  problem.nlp.finalize();
+  fesd::HomotopyOptions options;
+  options.wall_time_budget = 0.2;
+  const fesd::MpccReport report = fesd::MpccSolver(options).solve(problem.nlp, {0.6, 0.8});
+  ASSERT_EQ(report.status, fesd::SolveStatus::kTimeout) << report.message;
+  ASSERT_EQ(report.history.size(), 1u);
+  EXPECT_EQ(report.solution, (std::vector<double>{0.6, 0.8}));
+  EXPECT_NEAR(report.objective, 0.4 * 0.4 + 0.2 * 0.2, 1e-15);
+  EXPECT_NEAR(report.complementarity_residual, 0.48, 1e-15);
 }
 
 TEST(SolverRobustness, ATinyBudgetStopsTheShowcaseOcpAtOnceWithAFiniteIterate) {

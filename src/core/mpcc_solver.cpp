@@ -1,5 +1,6 @@
 #include "fesd_trajopt/core/mpcc_solver.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -73,6 +74,35 @@ SolveStatus failureStatus(Ipopt::ApplicationReturnStatus status) {
   }
 }
 
+/// The objective at x, NaN when it cannot be evaluated (a problem that fails at a point is
+/// Ipopt's to report).
+double objectiveOrNaN(const NlpProblem& problem, const std::vector<double>& x) {
+  try {
+    return problem.objective(x.data());
+  } catch (const std::exception&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+/// Largest violation of the bounds and constraints at x; infinity when they cannot be evaluated.
+double constraintViolation(const NlpProblem& problem, const std::vector<double>& x) {
+  const int n = problem.numVariables(), m = problem.numConstraints();
+  if (static_cast<int>(x.size()) != n) return std::numeric_limits<double>::infinity();
+  std::vector<double> x_lower(n), x_upper(n), g_lower(m), g_upper(m), g(m);
+  double violation = 0.0;
+  try {
+    problem.getBounds(x_lower.data(), x_upper.data(), g_lower.data(), g_upper.data());
+    problem.constraints(x.data(), g.data());
+  } catch (const std::exception&) {
+    return std::numeric_limits<double>::infinity();
+  }
+  for (int i = 0; i < n; ++i)
+    violation = std::max({violation, x_lower[i] - x[i], x[i] - x_upper[i]});
+  for (int i = 0; i < m; ++i)
+    violation = std::max({violation, g_lower[i] - g[i], g[i] - g_upper[i]});
+  return std::isnan(violation) ? std::numeric_limits<double>::infinity() : violation;
+}
+
 /// Settings shared by every solve of one call: the deadline, and Ipopt's obj_scaling_factor
 /// (fixed, or the objective at the guess brought to the target size).
 IpoptSession::SolveSettings initialSettings(const HomotopyOptions& options,
@@ -83,11 +113,7 @@ IpoptSession::SolveSettings initialSettings(const HomotopyOptions& options,
   const double budget = wall_time_budget >= 0.0 ? wall_time_budget : options.wall_time_budget;
   // A deadline of exactly now still stops the first solve at its first iteration.
   if (std::isfinite(budget)) settings.deadline_seconds = steadySeconds() + std::max(budget, 1e-9);
-  double size = std::numeric_limits<double>::quiet_NaN();
-  try {  // a problem that cannot be evaluated at the guess is Ipopt's to report
-    size = std::fabs(problem.objective(guess.data()));
-  } catch (const std::exception&) {
-  }
+  const double size = std::fabs(objectiveOrNaN(problem, guess));
   settings.objective_scaling = options.objective_scaling > 0.0 ? options.objective_scaling
                                : std::isfinite(size) && size > options.objective_scale_target
                                    ? options.objective_scale_target / size
@@ -189,6 +215,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
                            double wall_time_budget) {
   Stopwatch stopwatch;
   MpccReport report;
+  const PrimalDualPoint start = point;
   problem.setVanishingTermsWeight(options_.vanishing_terms_weight);
   IpoptSession::SolveSettings settings =
       initialSettings(options_, problem, point.x, wall_time_budget);
@@ -240,6 +267,14 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     }
     sigma *= options_.sigma_reduction;
     if (sigma < options_.minimum_sigma) break;
+  }
+  if (report.status == SolveStatus::kTimeout && !std::isfinite(best_residual) &&
+      constraintViolation(problem, start.x) < constraintViolation(problem, point.x)) {
+    // Nothing converged: of the start and the interrupted iterate, the more feasible one (a
+    // warm start's start is a previous solution, e.g. the fixed-grid stage's).
+    best = start;
+    best_residual = problem.complementarityResidual(start.x.data());
+    best_objective = objectiveOrNaN(problem, start.x);
   }
   if (report.status == SolveStatus::kTimeout && std::isfinite(best_residual)) {
     // The interrupted NLP's iterate solves nothing yet: the best converged relaxed NLP is the

@@ -110,7 +110,8 @@ struct MpccReport {
   std::string message;
   std::vector<HomotopyStep> history;
   /// The last accepted iterate; after a timeout the best one: the converged relaxed NLP with
-  /// the smallest residual, else the interrupted NLP's last iterate.
+  /// the smallest residual, else the start or the interrupted NLP's last iterate, whichever
+  /// violates the constraints less.
   std::vector<double> solution;
   NlpMultipliers multipliers;  ///< its multipliers
   double objective = 0.0;
