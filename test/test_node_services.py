@@ -201,6 +201,13 @@ class NodeServices(unittest.TestCase):
         self.assertEqual(len(response.solution.states),
                          len(response.solution.times) * response.solution.state_dimension)
         self.assertTrue(all(math.isfinite(v) for v in response.solution.states))
+        request = SimulateRequest(system="circle_example")
+        request.has_wall_time_budget, request.wall_time_budget = True, 1e-3
+        simulated = self.simulate(request)
+        self.assertEqual(simulated.status, TIMEOUT, simulated.message)
+        self.assertTrue(all(math.isfinite(v) for v in simulated.solution.states))
+        request.wall_time_budget = 0.0
+        self.assertEqual(self.simulate(request).status, INVALID_REQUEST)
 
     def test_switches_inside_elements_are_flagged_not_presented_as_resolved(self):
         self.assertTrue(self.default.solution.switches_resolved)

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "corner_mpcc.h"
+#include "fesd_trajopt/core/circle_example.h"
+#include "fesd_trajopt/core/fesd_integrator.h"
 #include "fesd_trajopt/core/manipulation_example.h"
 #include "fesd_trajopt/core/ocp_solver.h"
 #include "fesd_trajopt/core/scene_task.h"
@@ -173,6 +175,23 @@ TEST(SolverRobustness, ATinyBudgetStopsTheShowcaseOcpAtOnceWithAFiniteIterate) {
   for (const Eigen::VectorXd& u : solution.trajectory.controls) EXPECT_TRUE(u.allFinite());
   std::printf("tiny budget: %s after %.3f s\n", solution.message.c_str(),
               solution.report.wall_seconds);
+}
+
+TEST(SolverRobustness, ASimulationBudgetEndsTheSimulationWithTimeoutAndKeepsTheStepsDone) {
+  namespace example = fesd::circle_example;
+  fesd::SimulationOptions options;
+  options.wall_time_budget = 1e-3;
+  fesd::FesdIntegrator integrator(example::model(), options);
+  const fesd::SimulationResult result =
+      integrator.simulate(example::initialState(), example::horizon(), 40);
+  ASSERT_EQ(result.status, fesd::SolveStatus::kTimeout) << result.message;
+  EXPECT_LT(result.completed_steps, 40);
+  EXPECT_NE(result.message.find("timeout"), std::string::npos) << result.message;
+  // The steps done and the interrupted one, each of 2 elements.
+  EXPECT_EQ(result.trajectory.elements.size(), 2u * (result.completed_steps + 1));
+  for (const Eigen::VectorXd& x : result.trajectory.states) EXPECT_TRUE(x.allFinite());
+  std::printf("simulation budget 1 ms: %d of 40 steps, %.3f s\n", result.completed_steps,
+              result.totals.wall_seconds);
 }
 
 TEST(SolverRobustness, TwentyRepeatsOfOneOcpAreBitwiseIdentical) {

@@ -1,5 +1,6 @@
 #include "trajopt_node.h"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 
@@ -33,6 +34,12 @@ Discretization discretization(const Request& request, const NodeConfig& config) 
               std::to_string(d.stages);
   }
   return d;
+}
+
+/// The wall-time budget of a request: its own where given, else the configuration's.
+template <class Request>
+double wallTimeBudget(const Request& request, const NodeConfig& config) {
+  return request.has_wall_time_budget ? request.wall_time_budget : config.wall_time_budget;
 }
 
 /// An answer without a solve: the status and why, also in the solution.
@@ -118,8 +125,7 @@ void TrajoptNode::handleSolve(const fesd_trajopt::SolveTrajectory::Request& requ
   const double tolerance = request.has_complementarity_tolerance
                                ? request.complementarity_tolerance
                                : config_.complementarity_tolerance;
-  const double budget =
-      request.has_wall_time_budget ? request.wall_time_budget : config_.wall_time_budget;
+  const double budget = wallTimeBudget(request, config_);
   if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {
     return refuse(response, "the complementarity tolerance must be > 0 and finite");
   }
@@ -160,6 +166,7 @@ void TrajoptNode::handleSolve(const fesd_trajopt::SolveTrajectory::Request& requ
     fesd::SimulationOptions fine;
     fine.discretization.num_stages = config_.verification_stages;
     fine.discretization.num_elements = config_.verification_elements;
+    fine.wall_time_budget = std::max(0.0, budget - stopwatch.wallSeconds());  // inf if out of time
     response.solution.verified = true;
     response.solution.verification_error = fesd::resimulationError(ocp, solution, fine);
   }
@@ -182,6 +189,9 @@ void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
   fesd::SimulationOptions options;
   options.discretization.num_elements = grid.elements;
   options.discretization.num_stages = grid.stages;
+  options.wall_time_budget = wallTimeBudget(request, config_);
+  if (!(options.wall_time_budget > 0.0))
+    return refuse(response, "the wall-time budget must be > 0");
   const int steps =
       request.has_num_steps ? static_cast<int>(request.num_steps) : config_.num_intervals;
   if (steps < 1 || steps > config_.limits.max_intervals) {
