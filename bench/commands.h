@@ -10,5 +10,6 @@ int derivatives(const Arguments& args);
 int ocpManipulation(const Arguments& args);
 int ocpAccuracy(const Arguments& args);
 int scaling(const Arguments& args);
+int homotopyFailures(const Arguments& args);
 
 }  // namespace fesd_bench

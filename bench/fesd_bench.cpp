@@ -21,6 +21,11 @@ const std::map<std::string, Command>& commands() {
        {fesd_bench::derivatives,
         "Cost of one model evaluation (value + Jacobian + Hessian): analytic vs Eigen AutoDiff.\n"
         "    --repeat=200000"}},
+      {"homotopy-failures",
+       {fesd_bench::homotopyFailures,
+        "Continue after a failed relaxed NLP or stop: status, failed NLPs, iterations, time and\n"
+        "    error of circle/chain simulations and showcase OCPs with both settings, CSV.\n"
+        "    --stages=1,2,3,4 --steps=5,10,20,40 --intervals=10,20,30"}},
       {"ocp-manipulation",
        {fesd_bench::ocpManipulation,
         "The collaborative manipulation OCP (seed 000 Sec. IV-B), key=value per run.\n"

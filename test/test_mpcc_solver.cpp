@@ -1,29 +1,11 @@
 // The homotopy solver on tiny problems with known answers, and its status reporting.
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/core/mpcc_solver.h"
-#include "fesd_trajopt/core/nlp_assembly.h"
-#include "fesd_trajopt/core/quadratic_function.h"
+#include "corner_mpcc.h"
 
 namespace {
 
-/// min (x-1)^2 + (y-1)^2  s.t.  0 <= x _|_ y >= 0: minimisers (1, 0) and (0, 1), value 1.
-struct CornerMpcc {
-  fesd::NlpAssembly nlp;
-  int x, y;
-  CornerMpcc() {
-    x = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
-    y = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
-    nlp.addFunctionTerm(
-        fesd::QuadraticFunction::weightedDistance(Eigen::Vector2d::Ones(), Eigen::Vector2d::Ones()),
-        {x, y}, -1, {{fesd::NlpAssembly::kObjective, 1.0}});
-    nlp.addComplementarity({{x, 1.0}}, {{y, 1.0}});
-  }
-  fesd::MpccReport solve(const fesd::HomotopyOptions& options = {}) {
-    nlp.finalize();
-    return fesd::MpccSolver(options).solve(nlp, {1.0, 0.5});
-  }
-};
+using CornerMpcc = fesd_test::CornerMpcc<>;
 
 TEST(MpccSolver, ScholtesHomotopyReachesAStronglyStationaryPoint) {
   CornerMpcc problem;

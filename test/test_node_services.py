@@ -1,18 +1,19 @@
 #!/usr/bin/python3
 """Integration tests of the fesd_trajopt node: services, statuses, markers, concurrency."""
 import math
+import random
 import threading
 import unittest
 
 import rospy
 import rostest
-from fesd_trajopt.msg import BodySpec, BodyTrajectory, ContactPair, SwitchEvent, Wall
+from fesd_trajopt.msg import BodySpec, BodyTrajectory, ContactPair, Obstacle, SwitchEvent, Wall
 from fesd_trajopt.srv import (Simulate, SimulateRequest, SolveTrajectory,
                               SolveTrajectoryRequest)
 from geometry_msgs.msg import Point, Vector3
 from visualization_msgs.msg import MarkerArray
 
-SUCCESS, INVALID_REQUEST = 0, 6
+SUCCESS, INFEASIBLE, TIMEOUT, INVALID_REQUEST = 0, 2, 3, 6
 SOLVE = "/fesd_trajopt/solve_trajectory"
 SIMULATE = "/fesd_trajopt/simulate"
 
@@ -29,6 +30,53 @@ def small_default(intervals=10):
     request = SolveTrajectoryRequest()
     request.has_num_intervals, request.num_intervals = True, intervals
     request.has_num_elements, request.num_elements = True, 2
+    return request
+
+
+def three_disc_request(target_x, intervals):
+    """The three-disc URDF scene: the pusher drives the puck to (target_x, 0) in 2 s."""
+    request = SolveTrajectoryRequest()
+    request.urdf_param = "/three_disc_scene"
+    request.bodies = [body("pusher", role=BodySpec.ROLE_ACTUATED, max_speed=3.0),
+                      body("puck", target=Point(target_x, 0, 0), target_weight=10.0)]
+    request.has_horizon, request.horizon = True, 2.0
+    request.has_num_intervals, request.num_intervals = True, intervals
+    return request
+
+
+def random_request(rng):
+    """A request with random, often broken fields, kept small enough to solve quickly."""
+    nasty = [0.0, -1.0, 1e-300, 1e300, float("inf"), -float("inf"), float("nan")]
+
+    def number(low, high):
+        return rng.uniform(low, high) if rng.random() < 0.8 else rng.choice(nasty)
+
+    def point():
+        return Point(number(-15, 15), number(-15, 15), number(-1, 1))
+
+    names = ["actuator_1", "actuator_2", "object", "extra", ""]
+    request = SolveTrajectoryRequest()
+    for _ in range(rng.randint(0, 3)):
+        spec = body(rng.choice(names), add=rng.random() < 0.3, radius=number(0.1, 2.0),
+                    initial_position=point(), override_initial_position=rng.random() < 0.3,
+                    role=rng.randint(0, 3), max_speed=number(0, 10), target=point(),
+                    target_weight=number(0, 10) if rng.random() < 0.5 else 0.0,
+                    clear_target=rng.random() < 0.2)
+        spec.workspace_lower = [number(-20, 0) for _ in range(rng.choice([0, 2, 2, 3]))]
+        spec.workspace_upper = [number(0, 20) for _ in range(rng.choice([0, 2, 2, 3]))]
+        request.bodies.append(spec)
+    for i in range(rng.randint(0, 1)):
+        request.obstacles.append(Obstacle(name="o%d" % i, radius=number(0.1, 1), position=point()))
+    for i in range(rng.randint(0, 1)):
+        request.walls.append(Wall(name="w%d" % i, normal=Vector3(number(-1, 1), number(-1, 1), 0),
+                                  offset=number(-30, -20)))
+    if rng.random() < 0.2:
+        request.allowed_pairs = [ContactPair(first=rng.choice(names), second=rng.choice(names))]
+    request.has_horizon, request.horizon = rng.random() < 0.5, number(0.5, 3.0)
+    request.has_num_intervals, request.num_intervals = True, rng.choice([0, 1, 2, 3])
+    request.has_num_elements, request.num_elements = True, rng.choice([0, 1, 2, 9])
+    request.method = rng.choice([0, 1, 2, 7])
+    request.has_wall_time_budget, request.wall_time_budget = True, number(0.5, 1.0)
     return request
 
 
@@ -91,13 +139,7 @@ class NodeServices(unittest.TestCase):
         self.assertIn(("puck", "floor"), names)
 
     def test_scene_from_a_urdf_parameter(self):
-        request = SolveTrajectoryRequest()
-        request.urdf_param = "/three_disc_scene"
-        request.bodies = [body("pusher", role=BodySpec.ROLE_ACTUATED, max_speed=3.0),
-                          body("puck", target=Point(1.5, 0, 0), target_weight=10.0)]
-        request.has_horizon, request.horizon = True, 2.0
-        request.has_num_intervals, request.num_intervals = True, 10
-        response = self.solve(request)
+        response = self.solve(three_disc_request(1.5, 10))
         self.assertEqual(response.status, SUCCESS, response.message)
         self.assertIn("decoration", response.message)  # the link without collision geometry
         self.assertEqual(response.solution.statistics.complementarity_residual, 0.0)
@@ -133,6 +175,84 @@ class NodeServices(unittest.TestCase):
         self.assertEqual(after.status, SUCCESS, after.message)
         bad = self.simulate(SimulateRequest(system="pendulum"))
         self.assertEqual(bad.status, INVALID_REQUEST)
+
+    def test_impossible_targets_are_infeasible_not_solved(self):
+        inf = float("inf")
+        cases = [
+            ([body("object", workspace_upper=[inf, 5.0])], "outside its workspace"),
+            ([body("actuator_1", target=Point(-1000, 0, 0), target_weight=1.0)],
+             "cannot reach its target"),
+        ]
+        for bodies, keyword in cases:
+            request = SolveTrajectoryRequest()
+            request.bodies = bodies
+            response = self.solve(request)
+            self.assertEqual(response.status, INFEASIBLE, response.message)
+            self.assertEqual(response.solution.status, INFEASIBLE)
+            self.assertIn(keyword, response.message)
+
+    def test_a_tiny_wall_time_budget_times_out_with_a_finite_iterate(self):
+        request = SolveTrajectoryRequest()
+        request.has_wall_time_budget, request.wall_time_budget = True, 1e-3
+        response = self.solve(request)
+        self.assertEqual(response.status, TIMEOUT, response.message)
+        self.assertIn("timeout", response.message)
+        self.assertLess(response.solution.statistics.wall_time, 10.0)
+        self.assertEqual(len(response.solution.states),
+                         len(response.solution.times) * response.solution.state_dimension)
+        self.assertTrue(all(math.isfinite(v) for v in response.solution.states))
+        request = SimulateRequest(system="circle_example")
+        request.has_wall_time_budget, request.wall_time_budget = True, 1e-3
+        simulated = self.simulate(request)
+        self.assertEqual(simulated.status, TIMEOUT, simulated.message)
+        self.assertTrue(all(math.isfinite(v) for v in simulated.solution.states))
+        request.wall_time_budget = 0.0
+        self.assertEqual(self.simulate(request).status, INVALID_REQUEST)
+
+    def test_switches_inside_elements_are_flagged_not_presented_as_resolved(self):
+        self.assertTrue(self.default.solution.switches_resolved)
+        self.assertEqual(list(self.default.solution.unresolved_elements), [])
+        request = small_default(10)
+        request.method = SolveTrajectoryRequest.METHOD_STANDARD  # no switch detection
+        response = self.solve(request)
+        self.assertFalse(response.solution.switches_resolved, response.message)
+        self.assertIn("unresolved switch", response.message)
+        steps = len(response.solution.step_lengths)
+        self.assertTrue(all(e < steps for e in response.solution.unresolved_elements))
+        self.assertGreater(len(response.solution.unresolved_elements), 0)
+
+    def test_twenty_repeats_of_one_request_are_bitwise_identical(self):
+        request = three_disc_request(1.0, 4)
+        request.has_num_elements, request.num_elements = True, 2
+        first = self.solve(request)
+        self.assertEqual(first.status, SUCCESS, first.message)
+        self.assertTrue(first.solution.switches)
+        for _ in range(19):
+            again = self.solve(request)
+            self.assertEqual(again.status, first.status)
+            self.assertEqual(again.solution.states, first.solution.states)
+            self.assertEqual(again.solution.statistics.objective,
+                             first.solution.statistics.objective)
+            self.assertEqual(again.solution.statistics.ipopt_iterations,
+                             first.solution.statistics.ipopt_iterations)
+
+    def test_random_broken_requests_all_get_a_status_and_a_message(self):
+        rng = random.Random(6)
+        statuses = {}
+        for _ in range(150):
+            response = self.solve(random_request(rng))
+            self.assertIn(response.status, range(7), response.message)
+            statuses[response.status] = statuses.get(response.status, 0) + 1
+            if response.status == INVALID_REQUEST:
+                self.assertTrue(response.message.startswith("invalid request: "),
+                                response.message)
+            if response.status != SUCCESS:
+                self.assertGreater(len(response.message), 20)
+            self.assertTrue(all(math.isfinite(v) for v in response.solution.states))
+        self.assertGreater(statuses.get(INVALID_REQUEST, 0), 0)
+        self.assertGreater(statuses.get(SUCCESS, 0), 0, statuses)
+        after = self.simulate(SimulateRequest(system="circle_example"))
+        self.assertEqual(after.status, SUCCESS, after.message)
 
     def test_markers_arrive_with_the_expected_namespaces(self):
         markers = rospy.wait_for_message("/fesd_trajopt/markers", MarkerArray, timeout=30.0)

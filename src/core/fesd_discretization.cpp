@@ -538,12 +538,17 @@ Trajectory FesdDiscretization::extract(const double* x, double start_time,
                           x[steps_[e]],
                           Eigen::MatrixXd(nx_, ns),
                           Eigen::MatrixXd(nc_, ns),
-                          Eigen::MatrixXd(nc_, ns)};
+                          Eigen::MatrixXd(nc_, ns),
+                          Eigen::VectorXd()};
     for (int j = 0; j < ns; ++j) {
       const StagePoint& point = stages_[e][j];
       element.stage_states.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.x, nx_);
       element.stage_multipliers.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.lambda, nc_);
       element.stage_constraints.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.s, nc_);
+    }
+    if (nc_ > 0) {
+      element.lowest_constraints = lowestConstraintBetweenStages(
+          *ocp_.model->constraints(), tableau_.c, trajectory.states.back(), element.stage_states);
     }
     time += element.step;
     trajectory.times.push_back(time);
@@ -553,6 +558,7 @@ Trajectory FesdDiscretization::extract(const double* x, double start_time,
   std::vector<bool> initially_active(nc_);
   for (int k = 0; k < nc_; ++k) initially_active[k] = x[start_.s + k] <= activity_tolerance;
   trajectory.switches = detectSwitches(trajectory.elements, initially_active, activity_tolerance);
+  trajectory.unresolved_switches = findUnresolvedSwitches(trajectory.elements, activity_tolerance);
   return trajectory;
 }
 

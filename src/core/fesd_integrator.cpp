@@ -1,5 +1,7 @@
 #include "fesd_trajopt/core/fesd_integrator.h"
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -21,6 +23,12 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
     throw std::invalid_argument("FesdIntegrator: give one control per step or a single one");
   }
   Stopwatch stopwatch;
+  // A negative budget means none to the solver.
+  auto remainingBudget = [&] {
+    return std::isfinite(options_.wall_time_budget)
+               ? std::max(0.0, options_.wall_time_budget - stopwatch.wallSeconds())
+               : -1.0;
+  };
   OcpDefinition step_problem;
   step_problem.model = model_;
   step_problem.initial_state = x0;
@@ -44,9 +52,9 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
     const std::vector<double> guess = step == 0 || !options_.reuse_previous_step
                                           ? discretization.constantGuess({u})
                                           : discretization.translatedGuess(previous_solution);
-    MpccReport report = solver.solve(discretization.nlp(), guess);
+    MpccReport report = solver.solve(discretization.nlp(), guess, -1.0, remainingBudget());
     if (!report.converged() && report.status != SolveStatus::kTimeout) {
-      MpccReport retry = retry_solver.solve(discretization.nlp(), guess);
+      MpccReport retry = retry_solver.solve(discretization.nlp(), guess, -1.0, remainingBudget());
       retry.addEffort(report);  // both attempts' effort counts
       if (retry.converged()) ++result.retried_steps;
       report = std::move(retry);
@@ -73,12 +81,17 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
   for (int k = 0; k < c0.size(); ++k) initially_active[k] = c0(k) <= options_.activity_tolerance;
   result.trajectory.switches =
       detectSwitches(result.trajectory.elements, initially_active, options_.activity_tolerance);
+  result.trajectory.unresolved_switches =
+      findUnresolvedSwitches(result.trajectory.elements, options_.activity_tolerance);
   if (result.status == SolveStatus::kSuccess) {
     std::ostringstream message;
     message << "simulated " << num_steps << " step(s): " << result.totals.iterations
             << " Ipopt iterations, " << result.trajectory.switches.size() << " switch(es)";
     if (result.retried_steps > 0) message << ", " << result.retried_steps << " step(s) retried";
     result.message = message.str();
+  }
+  if (!result.trajectory.switchesResolved()) {
+    result.message += "; " + describeUnresolvedSwitches(result.trajectory.unresolved_switches);
   }
   result.totals.status = result.status;
   result.totals.message = result.message;

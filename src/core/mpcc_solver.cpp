@@ -1,8 +1,10 @@
 #include "fesd_trajopt/core/mpcc_solver.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "fesd_trajopt/core/stopwatch.h"
 #include "ipopt_session.h"
@@ -45,6 +47,12 @@ void MpccReport::addEffort(const MpccReport& other) {
   evaluation_seconds += other.evaluation_seconds;
 }
 
+int MpccReport::failedSteps() const {
+  int failed = 0;
+  for (const HomotopyStep& step : history) failed += !step.converged;
+  return failed;
+}
+
 void MpccReport::accumulate(const MpccReport& other) {
   addEffort(other);
   complementarity_residual = std::max(complementarity_residual, other.complementarity_residual);
@@ -66,6 +74,35 @@ SolveStatus failureStatus(Ipopt::ApplicationReturnStatus status) {
   }
 }
 
+/// The objective at x, NaN when it cannot be evaluated (a problem that fails at a point is
+/// Ipopt's to report).
+double objectiveOrNaN(const NlpProblem& problem, const std::vector<double>& x) {
+  try {
+    return problem.objective(x.data());
+  } catch (const std::exception&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+/// Largest violation of the bounds and constraints at x; infinity when they cannot be evaluated.
+double constraintViolation(const NlpProblem& problem, const std::vector<double>& x) {
+  const int n = problem.numVariables(), m = problem.numConstraints();
+  if (static_cast<int>(x.size()) != n) return std::numeric_limits<double>::infinity();
+  std::vector<double> x_lower(n), x_upper(n), g_lower(m), g_upper(m), g(m);
+  double violation = 0.0;
+  try {
+    problem.getBounds(x_lower.data(), x_upper.data(), g_lower.data(), g_upper.data());
+    problem.constraints(x.data(), g.data());
+  } catch (const std::exception&) {
+    return std::numeric_limits<double>::infinity();
+  }
+  for (int i = 0; i < n; ++i)
+    violation = std::max({violation, x_lower[i] - x[i], x[i] - x_upper[i]});
+  for (int i = 0; i < m; ++i)
+    violation = std::max({violation, g_lower[i] - g[i], g[i] - g_upper[i]});
+  return std::isnan(violation) ? std::numeric_limits<double>::infinity() : violation;
+}
+
 /// Settings shared by every solve of one call: the deadline, and Ipopt's obj_scaling_factor
 /// (fixed, or the objective at the guess brought to the target size).
 IpoptSession::SolveSettings initialSettings(const HomotopyOptions& options,
@@ -76,7 +113,7 @@ IpoptSession::SolveSettings initialSettings(const HomotopyOptions& options,
   const double budget = wall_time_budget >= 0.0 ? wall_time_budget : options.wall_time_budget;
   // A deadline of exactly now still stops the first solve at its first iteration.
   if (std::isfinite(budget)) settings.deadline_seconds = steadySeconds() + std::max(budget, 1e-9);
-  const double size = std::fabs(problem.objective(guess.data()));
+  const double size = std::fabs(objectiveOrNaN(problem, guess));
   settings.objective_scaling = options.objective_scaling > 0.0 ? options.objective_scaling
                                : std::isfinite(size) && size > options.objective_scale_target
                                    ? options.objective_scale_target / size
@@ -97,7 +134,8 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
     problem.releaseActiveSet();
     const double residual = problem.complementarityResidual(point.x.data());
     report.history.push_back({0.0, outcome.iterations, residual, outcome.objective,
-                              IpoptSession::statusName(outcome.status), outcome.wall_seconds});
+                              IpoptSession::statusName(outcome.status), outcome.wall_seconds,
+                              IpoptSession::converged(outcome.status)});
     report.iterations += outcome.iterations;
     report.evaluation_seconds += outcome.evaluation_seconds;
     report.ipopt_seconds += outcome.wall_seconds - outcome.evaluation_seconds;
@@ -177,6 +215,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
                            double wall_time_budget) {
   Stopwatch stopwatch;
   MpccReport report;
+  const PrimalDualPoint start = point;
   problem.setVanishingTermsWeight(options_.vanishing_terms_weight);
   IpoptSession::SolveSettings settings =
       initialSettings(options_, problem, point.x, wall_time_budget);
@@ -185,7 +224,9 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
   double sigma = sigma_initial > 0.0 ? sigma_initial : options_.sigma_initial;
   // The converged relaxed NLP with the smallest residual, for a polishing rescue.
   PrimalDualPoint best;
-  double best_residual = std::numeric_limits<double>::infinity(), best_sigma = sigma;
+  double best_residual = std::numeric_limits<double>::infinity(), best_sigma = sigma,
+         best_objective = 0.0;
+  int consecutive_failures = 0;
   for (int step = 0; step < steps; ++step) {
     problem.setRelaxation(sigma);
     settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma;
@@ -196,7 +237,8 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     const NlpOutcome outcome = session_->solve(problem, point, settings);
     const double residual = problem.complementarityResidual(point.x.data());
     report.history.push_back({sigma, outcome.iterations, residual, outcome.objective,
-                              IpoptSession::statusName(outcome.status), outcome.wall_seconds});
+                              IpoptSession::statusName(outcome.status), outcome.wall_seconds,
+                              IpoptSession::converged(outcome.status)});
     report.iterations += outcome.iterations;
     report.evaluation_seconds += outcome.evaluation_seconds;
     report.ipopt_seconds += outcome.wall_seconds - outcome.evaluation_seconds;
@@ -210,6 +252,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
       best = point;
       best_residual = residual;
       best_sigma = sigma;
+      best_objective = outcome.objective;
     }
     if (converged && residual <= options_.complementarity_tolerance) {
       report.status = SolveStatus::kSuccess;
@@ -217,9 +260,30 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     }
     report.status = converged ? SolveStatus::kComplementarityNotMet : failureStatus(outcome.status);
     if (report.status == SolveStatus::kTimeout) break;
-    if (!converged && !options_.continue_after_failure) break;
+    consecutive_failures = converged ? 0 : consecutive_failures + 1;
+    if (!converged && (!options_.continue_after_failure ||
+                       consecutive_failures >= options_.max_consecutive_failures)) {
+      break;
+    }
     sigma *= options_.sigma_reduction;
     if (sigma < options_.minimum_sigma) break;
+  }
+  if (report.status == SolveStatus::kTimeout && !std::isfinite(best_residual) &&
+      constraintViolation(problem, start.x) < constraintViolation(problem, point.x)) {
+    // Nothing converged: of the start and the interrupted iterate, the more feasible one (a
+    // warm start's start is a previous solution, e.g. the fixed-grid stage's).
+    best = start;
+    best_residual = problem.complementarityResidual(start.x.data());
+    best_objective = objectiveOrNaN(problem, start.x);
+  }
+  if (report.status == SolveStatus::kTimeout && std::isfinite(best_residual)) {
+    // The interrupted NLP's iterate solves nothing yet: the best converged relaxed NLP is the
+    // best iterate there is.
+    report.solution = best.x;
+    report.multipliers = {best.bound_lower_multipliers, best.bound_upper_multipliers,
+                          best.constraint_multipliers};
+    report.objective = best_objective;
+    report.complementarity_residual = best_residual;
   }
   if (!smooth && options_.polish_active_set) {
     settings.tolerance = options_.ipopt.tolerance;

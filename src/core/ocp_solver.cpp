@@ -14,6 +14,12 @@ HomotopyOptions fixedGridHomotopy(const OcpOptions& options) {
   return stage;
 }
 
+/// The solver's message, and a warning when the trajectory has unresolved switches.
+std::string resultMessage(const MpccReport& report, const Trajectory& trajectory) {
+  if (trajectory.switchesResolved()) return report.message;
+  return report.message + "; " + describeUnresolvedSwitches(trajectory.unresolved_switches);
+}
+
 }  // namespace
 
 OcpSolver::OcpSolver(OcpDefinition ocp, OcpOptions options)
@@ -48,9 +54,10 @@ OcpSolution OcpSolver::solve() {
   solution.report.history.insert(solution.report.history.begin(), fixed.history.begin(),
                                  fixed.history.end());
   solution.report.addEffort(fixed);
-  solution.message = solution.report.message =
-      describe(solution.report, options_.homotopy.complementarity_tolerance) + " (" +
-      std::to_string(fixed.history.size()) + " step(s) on the fixed grid)";
+  solution.report.message = describe(solution.report, options_.homotopy.complementarity_tolerance) +
+                            " (" + std::to_string(fixed.history.size()) +
+                            " step(s) on the fixed grid)";
+  solution.message = resultMessage(solution.report, solution.trajectory);
   return solution;
 }
 
@@ -66,9 +73,9 @@ OcpSolution OcpSolver::finish(MpccReport report, const FesdDiscretization& sourc
   OcpSolution solution;
   solution.report = std::move(report);
   solution.status = solution.report.status;
-  solution.message = solution.report.message;
   solution.trajectory =
       source.extract(solution.report.solution.data(), 0.0, options_.activity_tolerance);
+  solution.message = resultMessage(solution.report, solution.trajectory);
   return solution;
 }
 

@@ -217,6 +217,27 @@ std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
   return "";
 }
 
+std::string infeasibility(const SceneTask& task) {
+  const std::vector<double> reach = bodyReach(task);
+  for (size_t b = 0; b < task.bodies.size(); ++b) {
+    const BodyTask& t = task.bodies[b];
+    if (t.target.size() == 0 || t.target_weight == 0.0) continue;
+    const std::string who = "body '" + task.scene.bodies()[b].name + "'";
+    if ((t.workspace_lower.size() && (t.target.array() < t.workspace_lower.array()).any()) ||
+        (t.workspace_upper.size() && (t.target.array() > t.workspace_upper.array()).any())) {
+      return who + " has its target outside its workspace bounds";
+    }
+    const Box box = reachableBox(task, static_cast<int>(b), reach[b]);
+    const double miss = boxDistance(box, Box{t.target, t.target});
+    if (miss > 0.0) {
+      return who + " cannot reach its target within the horizon: it stays at least " +
+             formatNumber(miss) + " away" +
+             (reach[b] > 0.0 ? "" : " (nothing that moves can push it)");
+    }
+  }
+  return "";
+}
+
 std::vector<PairDecision> decidePairs(const SceneTask& task) {
   const std::vector<double> reach = bodyReach(task);
   std::vector<PairDecision> decisions;

@@ -70,6 +70,13 @@ void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& repo
     solution.step_lengths.push_back(element.step);
   }
   solution.control_times = trajectory.interval_times;
+  solution.switches_resolved = trajectory.switchesResolved();
+  for (const fesd::UnresolvedSwitch& unresolved : trajectory.unresolved_switches) {
+    if (solution.unresolved_elements.empty() ||
+        solution.unresolved_elements.back() != static_cast<uint32_t>(unresolved.element)) {
+      solution.unresolved_elements.push_back(unresolved.element);
+    }
+  }
   solution.state_dimension = trajectory.states.empty() ? 0 : trajectory.states.front().size();
   for (const Eigen::VectorXd& x : trajectory.states) {
     solution.states.insert(solution.states.end(), x.data(), x.data() + x.size());

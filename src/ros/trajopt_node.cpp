@@ -1,5 +1,6 @@
 #include "trajopt_node.h"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 
@@ -35,13 +36,31 @@ Discretization discretization(const Request& request, const NodeConfig& config) 
   return d;
 }
 
+/// The wall-time budget of a request: its own where given, else the configuration's.
+template <class Request>
+double wallTimeBudget(const Request& request, const NodeConfig& config) {
+  return request.has_wall_time_budget ? request.wall_time_budget : config.wall_time_budget;
+}
+
+/// An answer without a solve: the status and why, also in the solution.
+template <class Response>
+void answerUnsolved(Response& response, uint8_t status, const std::string& message) {
+  response.status = status;
+  response.message = message;
+  response.solution.status = status;
+  response.solution.message = message;
+  ROS_WARN_STREAM("fesd_trajopt: " << message);
+}
+
 template <class Response>
 void refuse(Response& response, const std::string& why) {
-  response.status = kInvalidRequest;
-  response.message = "invalid request: " + why;
-  response.solution.status = kInvalidRequest;
-  response.solution.message = response.message;
-  ROS_WARN_STREAM("fesd_trajopt: " << response.message);
+  answerUnsolved(response, kInvalidRequest, "invalid request: " + why);
+}
+
+/// A valid request that asks for the impossible.
+template <class Response>
+void answerInfeasible(Response& response, const std::string& why) {
+  answerUnsolved(response, statusCode(fesd::SolveStatus::kInfeasible), "infeasible: " + why);
 }
 
 template <class Response>
@@ -106,14 +125,15 @@ void TrajoptNode::handleSolve(const fesd_trajopt::SolveTrajectory::Request& requ
   const double tolerance = request.has_complementarity_tolerance
                                ? request.complementarity_tolerance
                                : config_.complementarity_tolerance;
-  const double budget =
-      request.has_wall_time_budget ? request.wall_time_budget : config_.wall_time_budget;
+  const double budget = wallTimeBudget(request, config_);
   if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {
     return refuse(response, "the complementarity tolerance must be > 0 and finite");
   }
   if (!(budget > 0.0)) return refuse(response, "the wall-time budget must be > 0");
   const std::string problem = fesd::validateTask(task, config_.limits);
   if (!problem.empty()) return refuse(response, problem);
+  const std::string infeasible = fesd::infeasibility(task);
+  if (!infeasible.empty()) return answerInfeasible(response, infeasible);
 
   const std::vector<fesd::PairDecision> decisions = fesd::decidePairs(task);
   const fesd::MovingPart part = fesd::movingPart(task, decisions);
@@ -137,6 +157,7 @@ void TrajoptNode::handleSolve(const fesd_trajopt::SolveTrajectory::Request& requ
   const fesd::OcpSolution solution = solver.solve();
   response.solution = sceneSolution(
       task, decisions, fesd::fullSceneTrajectory(task, part, solution.trajectory), solution.report);
+  response.solution.message = solution.message;  // with the warning on unresolved switches
   const fesd::NlpAssembly& nlp = solver.discretization().nlp();
   response.solution.statistics.nlp_variables = nlp.numVariables();
   response.solution.statistics.nlp_constraints = nlp.numConstraints();
@@ -145,6 +166,7 @@ void TrajoptNode::handleSolve(const fesd_trajopt::SolveTrajectory::Request& requ
     fesd::SimulationOptions fine;
     fine.discretization.num_stages = config_.verification_stages;
     fine.discretization.num_elements = config_.verification_elements;
+    fine.wall_time_budget = std::max(0.0, budget - stopwatch.wallSeconds());  // inf if out of time
     response.solution.verified = true;
     response.solution.verification_error = fesd::resimulationError(ocp, solution, fine);
   }
@@ -167,6 +189,9 @@ void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
   fesd::SimulationOptions options;
   options.discretization.num_elements = grid.elements;
   options.discretization.num_stages = grid.stages;
+  options.wall_time_budget = wallTimeBudget(request, config_);
+  if (!(options.wall_time_budget > 0.0))
+    return refuse(response, "the wall-time budget must be > 0");
   const int steps =
       request.has_num_steps ? static_cast<int>(request.num_steps) : config_.num_intervals;
   if (steps < 1 || steps > config_.limits.max_intervals) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,6 +34,9 @@ struct SimulationOptions {
   /// no tighter relaxation is feasible.
   HomotopyOptions retry_homotopy = retryHomotopy();
   double activity_tolerance = kDefaultActivityTolerance;
+  /// Seconds for the whole simulation: each step's homotopy gets what is left; a step that runs
+  /// out ends the simulation with kTimeout (the steps before it are kept).
+  double wall_time_budget = std::numeric_limits<double>::infinity();
   /// Start each step from the previous step's solution translated to the new start state
   /// (otherwise from a constant guess).
   bool reuse_previous_step = true;

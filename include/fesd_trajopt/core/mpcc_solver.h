@@ -56,6 +56,11 @@ struct HomotopyOptions {
   /// A relaxed NLP that ends without converging does not abort the homotopy: the next, tighter
   /// one starts from its iterate (as the reference implementation does).
   bool continue_after_failure = true;
+  /// ... but only this many failures in a row. Measured (bench homotopy-failures): the longest
+  /// run of failed NLPs that a homotopy still recovered from was 3 (a step of the showcase's
+  /// re-simulation); on problems whose relaxations are all infeasible every further NLP failed
+  /// too (14 in a row, 3-8 times the time of stopping, same status).
+  int max_consecutive_failures = 6;
   double wall_time_budget = std::numeric_limits<double>::infinity();  ///< seconds, per solve
   /// After the homotopy converges, fix the identified active set and solve the resulting smooth
   /// NLP once more (RelaxedMpcc::fixActiveSet): complementarity then holds exactly instead of
@@ -91,6 +96,7 @@ struct HomotopyStep {
   double objective;
   std::string ipopt_status;
   double wall_seconds;
+  bool converged;  ///< Ipopt solved this NLP (to tolerance or to the acceptable level)
 };
 
 /// Multipliers of an NLP solution (bounds and constraints), for warm starts.
@@ -103,8 +109,11 @@ struct MpccReport {
   SolveStatus status = SolveStatus::kSolverError;
   std::string message;
   std::vector<HomotopyStep> history;
-  std::vector<double> solution;  ///< the last accepted iterate
-  NlpMultipliers multipliers;    ///< its multipliers
+  /// The last accepted iterate; after a timeout the best one: the converged relaxed NLP with
+  /// the smallest residual, else the start or the interrupted NLP's last iterate, whichever
+  /// violates the constraints less.
+  std::vector<double> solution;
+  NlpMultipliers multipliers;  ///< its multipliers
   double objective = 0.0;
   double complementarity_residual = 0.0;
   int iterations = 0;     ///< Ipopt iterations over all homotopy steps
@@ -114,6 +123,7 @@ struct MpccReport {
   double evaluation_seconds = 0.0;  ///< wall time inside our function evaluations
 
   bool converged() const { return status == SolveStatus::kSuccess; }
+  int failedSteps() const;  ///< relaxed (or polishing) NLPs that Ipopt did not solve
   void addEffort(const MpccReport& other);   ///< adds another solve's iterations and times
   void accumulate(const MpccReport& other);  ///< addEffort, and the worse residual
 };

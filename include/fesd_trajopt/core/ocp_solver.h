@@ -35,8 +35,10 @@ struct OcpOptions {
 
 struct OcpSolution {
   SolveStatus status = SolveStatus::kSolverError;
-  std::string message;
+  std::string message;  ///< the solver's, and a warning on unresolved switches
   /// Per element: interval, start time, h, stage states, lambda, c; per interval: u; switches.
+  /// Its unresolved_switches (switches inside an element) mark a solution that is not fully
+  /// accurate even when the status is kSuccess.
   Trajectory trajectory;
   MpccReport report;  ///< homotopy history, iterations, times, objective, residual
 };

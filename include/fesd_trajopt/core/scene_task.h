@@ -48,6 +48,12 @@ struct TaskLimits {
 /// problem.
 std::string validateTask(const SceneTask& task, const TaskLimits& limits);
 
+/// Checks a valid task (validateTask) for goals it cannot meet: a target outside the body's
+/// workspace bounds, or beyond the reach of everything that could move it within the horizon
+/// (the conservative reach of decidePairs; a passive body nothing can push has none). Returns ""
+/// or a message naming the body and the target.
+std::string infeasibility(const SceneTask& task);
+
 /// Whether a contact pair is modelled, and why (or why not).
 struct PairDecision {
   ContactPair pair;
