@@ -37,6 +37,12 @@ const std::map<std::string, Command>& commands() {
         "Solve time vs N_ctrl (showcase) and vs bodies (lanes of pusher + puck, pruning on\n"
         "    and off), CSV. --sweeps=intervals,bodies --intervals=10,20,30,40,60,80\n"
         "    --lanes=1,2,3,4,6,8 --lane-intervals=10 --elements=2 --stages=2 --budget=120"}},
+      {"order-filippov",
+       {fesd_bench::orderFilippov,
+        "Example (47) (seed 001): terminal error vs step for FESD and standard, Radau-IIA and\n"
+        "    Gauss-Legendre, CSV. --radau-stages=1,2,3 --gauss-stages=1,2\n"
+        "    --totals=8,12,16,24,32,48,64 --elements=2 (per step) --methods=fesd,standard\n"
+        "    --kappa=0.01 (homotopy) --equilibration=indicator|tanh|none"}},
       {"order-pds",
        {fesd_bench::orderPds,
         "Example 1 (seed 000): terminal error vs step for FESD and standard, Radau-IIA.\n"

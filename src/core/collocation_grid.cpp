@@ -166,4 +166,38 @@ void addCostsAndConstraints(NlpAssembly& nlp, const CollocationGrid& grid, const
   }
 }
 
+Trajectory gridTrajectory(const double* x, const CollocationGrid& grid, const OcpDefinition& ocp,
+                          int start_state, int num_pairs, double start_time) {
+  const int nx = ocp.model->stateSize(), nu = ocp.model->controlSize();
+  Trajectory trajectory;
+  const double interval_length = ocp.horizon / ocp.num_intervals;
+  for (int k = 0; k <= ocp.num_intervals; ++k) {
+    trajectory.interval_times.push_back(start_time + k * interval_length);
+  }
+  for (int k = 0; k < ocp.num_intervals; ++k) {
+    trajectory.controls.push_back(Eigen::Map<const Eigen::VectorXd>(x + grid.controls[k], nu));
+  }
+  double time = start_time;
+  trajectory.times.push_back(time);
+  trajectory.states.push_back(Eigen::Map<const Eigen::VectorXd>(x + start_state, nx));
+  for (int e = 0; e < grid.numElements(); ++e) {
+    const int ns = static_cast<int>(grid.stage_states[e].size());
+    ElementValues element{e / grid.elements_per_interval,
+                          time,
+                          x[grid.steps[e]],
+                          Eigen::MatrixXd(nx, ns),
+                          Eigen::MatrixXd(num_pairs, ns),
+                          Eigen::MatrixXd(num_pairs, ns)};
+    for (int j = 0; j < ns; ++j) {
+      element.stage_states.col(j) =
+          Eigen::Map<const Eigen::VectorXd>(x + grid.stage_states[e][j], nx);
+    }
+    time += element.step;
+    trajectory.times.push_back(time);
+    trajectory.states.push_back(Eigen::Map<const Eigen::VectorXd>(x + grid.end_states[e], nx));
+    trajectory.elements.push_back(std::move(element));
+  }
+  return trajectory;
+}
+
 }  // namespace fesd

@@ -423,32 +423,14 @@ void FesdDiscretization::completeAuxiliaries(std::vector<double>& x) const {
 
 Trajectory FesdDiscretization::extract(const double* x, double start_time,
                                        double activity_tolerance) const {
-  const int ns = tableau_.stages;
-  Trajectory trajectory;
-  const double interval_length = ocp_.horizon / ocp_.num_intervals;
-  for (int k = 0; k <= ocp_.num_intervals; ++k) {
-    trajectory.interval_times.push_back(start_time + k * interval_length);
-  }
-  for (int k = 0; k < ocp_.num_intervals; ++k) {
-    trajectory.controls.push_back(Eigen::Map<const Eigen::VectorXd>(x + grid_.controls[k], nu_));
-  }
-  double time = start_time;
-  trajectory.times.push_back(time);
-  trajectory.states.push_back(Eigen::Map<const Eigen::VectorXd>(x + start_.x, nx_));
+  Trajectory trajectory = gridTrajectory(x, grid_, ocp_, start_.x, nc_, start_time);
   for (int e = 0; e < numElements(); ++e) {
-    ElementValues element{e / options_.num_elements, time,
-                          x[grid_.steps[e]],         Eigen::MatrixXd(nx_, ns),
-                          Eigen::MatrixXd(nc_, ns),  Eigen::MatrixXd(nc_, ns)};
-    for (int j = 0; j < ns; ++j) {
+    ElementValues& element = trajectory.elements[e];
+    for (int j = 0; j < tableau_.stages; ++j) {
       const StagePoint& point = stages_[e][j];
-      element.stage_states.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.x, nx_);
       element.stage_multipliers.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.lambda, nc_);
       element.stage_constraints.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.s, nc_);
     }
-    time += element.step;
-    trajectory.times.push_back(time);
-    trajectory.states.push_back(element.stage_states.col(ns - 1));
-    trajectory.elements.push_back(std::move(element));
   }
   std::vector<bool> initially_active(nc_);
   for (int k = 0; k < nc_; ++k) initially_active[k] = x[start_.s + k] <= activity_tolerance;

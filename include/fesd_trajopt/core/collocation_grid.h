@@ -8,6 +8,7 @@
 #include "fesd_trajopt/core/butcher_tableau.h"
 #include "fesd_trajopt/core/nlp_assembly.h"
 #include "fesd_trajopt/core/ocp_definition.h"
+#include "fesd_trajopt/core/trajectory.h"
 
 namespace fesd {
 
@@ -54,5 +55,12 @@ void addStepRegularizer(NlpAssembly& nlp, const DiscretizationOptions& options, 
 /// Mayer cost and terminal constraints at the last element's end.
 void addCostsAndConstraints(NlpAssembly& nlp, const CollocationGrid& grid, const OcpDefinition& ocp,
                             const ButcherTableau& tableau);
+
+/// The grid part of a solution's trajectory: control interval times and controls, element
+/// times, steps, stage states and boundary states. Each element's complementarity-pair
+/// matrices (num_pairs x n_s) are allocated for the model's discretisation to fill; switches
+/// are left to it too.
+Trajectory gridTrajectory(const double* x, const CollocationGrid& grid, const OcpDefinition& ocp,
+                          int start_state, int num_pairs, double start_time);
 
 }  // namespace fesd
