@@ -41,8 +41,21 @@ const std::map<std::string, Command>& commands() {
        {fesd_bench::orderFilippov,
         "Example (47) (seed 001): terminal error vs step for FESD and standard, Radau-IIA and\n"
         "    Gauss-Legendre, CSV. --radau-stages=1,2,3 --gauss-stages=1,2\n"
-        "    --totals=8,12,16,24,32,48,64 --elements=2 (per step) --methods=fesd,standard\n"
-        "    --kappa=0.01 (homotopy) --equilibration=indicator|tanh|none"}},
+        "    --totals=16,24,32,48,64,96,128 --elements=2 (per step) --methods=fesd,standard\n"
+        "    --kappa=0.01 (homotopy) --equilibration=indicator|tanh|none\n"
+        "    --equilibration-relaxation=1e3 (r of |dh/h0 eta| <= r sigma)"}},
+      {"ocp-filippov",
+       {fesd_bench::ocpFilippov,
+        "OCP (61) (seed 001), two sliding surfaces: terminal error of a fine re-simulation of\n"
+        "    the optimal controls vs CPU time, CSV. --stages=1,2,3,4 --elements=1,...,7\n"
+        "    --methods=fesd,standard --family=radau|gauss --equilibration=indicator|tanh|none\n"
+        "    --budget=120 (s per solve) --reference-stages=4 --reference-elements=12\n"
+        "    --print-steps (element lengths and switch indicators eta per run)"}},
+      {"sign-ocp",
+       {fesd_bench::signOcp,
+        "OCP (56) (seed 001): x0 found from forward-simulation guesses, FESD vs standard, with a\n"
+        "    homotopy or one relaxed NLP at a fixed sigma, CSV. --methods=fesd,standard\n"
+        "    --strategies=homotopy,fixed --fixed-sigma=1e-15 --guesses=-2.5,-2,...,2"}},
       {"order-pds",
        {fesd_bench::orderPds,
         "Example 1 (seed 000): terminal error vs step for FESD and standard, Radau-IIA.\n"

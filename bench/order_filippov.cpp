@@ -13,15 +13,12 @@ namespace fesd_bench {
 int orderFilippov(const Arguments& args) {
   const std::vector<int> radau_stages = args.integers("radau-stages", {1, 2, 3});
   const std::vector<int> gauss_stages = args.integers("gauss-stages", {1, 2});
-  const std::vector<int> totals = args.integers("totals", {8, 12, 16, 24, 32, 48, 64});
+  const std::vector<int> totals = args.integers("totals", {16, 24, 32, 48, 64, 96, 128});
   const std::vector<std::string> methods = args.texts("methods", {"fesd", "standard"});
   const int elements = args.integer("elements", 2);
   fesd::SimulationOptions defaults;
   const double kappa = args.number("kappa", defaults.homotopy.sigma_reduction);
-  const std::string equilibration = args.text("equilibration", "indicator");
-  if (equilibration != "indicator" && equilibration != "tanh" && equilibration != "none") {
-    throw std::invalid_argument("--equilibration takes indicator, tanh or none");
-  }
+  const fesd::StepEquilibration equilibration = stepEquilibration(args);
   const double relaxation = args.number("equilibration-relaxation",
                                         defaults.discretization.filippov_equilibration_relaxation);
   args.rejectUnused();
@@ -46,10 +43,7 @@ int orderFilippov(const Arguments& args) {
           options.discretization.num_stages = ns;
           options.discretization.num_elements = elements;
           options.discretization.switch_detection = method == "fesd";
-          options.discretization.filippov_step_equilibration =
-              equilibration == "none"   ? fesd::StepEquilibration::kNone
-              : equilibration == "tanh" ? fesd::StepEquilibration::kTanhIndicator
-                                        : fesd::StepEquilibration::kIndicator;
+          options.discretization.filippov_step_equilibration = equilibration;
           options.discretization.filippov_equilibration_relaxation = relaxation;
           options.homotopy.sigma_reduction = kappa;
           fesd::FesdIntegrator integrator(example::model(), options);

@@ -9,6 +9,7 @@
 #include "fesd_trajopt/core/fesd_integrator.h"
 #include "fesd_trajopt/core/filippov_examples.h"
 #include "fesd_trajopt/core/ocp_solver.h"
+#include "fesd_trajopt/core/stewart_discretization.h"
 
 namespace {
 
@@ -165,6 +166,21 @@ TEST(SlidingOcp, SlidesOnASurfaceThenTheManifoldAndEqualisesSteps) {
     adapted_intervals += adapted;
   }
   EXPECT_GE(adapted_intervals, 1);  // the grid did move to the switches
+  // eq. 31: where the steps change, the switch indicator vanishes.
+  const auto& discretization =
+      dynamic_cast<const fesd::StewartDiscretization&>(solver.discretization());
+  const std::vector<double> indicators =
+      discretization.switchIndicators(solution.report.solution.data());
+  ASSERT_EQ(indicators.size(), 6u * 5u);
+  for (int k = 0; k < 6; ++k) {
+    for (int n = 1; n < 6; ++n) {
+      const int element = 6 * k + n;
+      if (std::fabs(trajectory.elements[element].step - trajectory.elements[element - 1].step) >
+          1e-8) {
+        EXPECT_LT(indicators[5 * k + n - 1], 1e-10) << "element " << element;
+      }
+    }
+  }
 }
 
 }  // namespace

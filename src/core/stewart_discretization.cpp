@@ -9,38 +9,17 @@ namespace {
 
 constexpr double kInf = NlpAssembly::kInfinity;
 
-/// ((h_n - h_{n-1}) / h0) * eta_n on z = (h_{n-1}, h_n, blocks of n_f values), with
-/// eta_n = prod_i (sum_B lambda_i sum_F lambda_i + sum_B theta_i sum_F theta_i) (seed 001,
-/// eq. 31) or tanh(eta_n). The sums list block positions; a block shared by both sums (the
-/// lambda at the common boundary) is one input, so every NLP variable enters once.
+/// ((h_n - h_{n-1}) / h0) * eta on z = (h_{n-1}, h_n, the indicator's blocks), or with
+/// tanh(eta) (seed 001, eq. 31). Every NLP variable enters z once.
 struct EquilibrationResidual {
-  int nf;
+  SwitchIndicator indicator;
   double h0;
   bool tanh_scaled;
-  std::vector<int> lambda_backward, lambda_forward, theta_backward, theta_forward;
-
-  template <class T>
-  T sum(const T* z, const std::vector<int>& blocks, int mode) const {
-    T total = z[2 + blocks[0] * nf + mode];
-    for (size_t b = 1; b < blocks.size(); ++b) total += z[2 + blocks[b] * nf + mode];
-    return total;
-  }
-
-  template <class T>
-  T indicator(const T* z) const {
-    T eta = sum(z, lambda_backward, 0) * sum(z, lambda_forward, 0) +
-            sum(z, theta_backward, 0) * sum(z, theta_forward, 0);
-    for (int i = 1; i < nf; ++i) {
-      eta *= sum(z, lambda_backward, i) * sum(z, lambda_forward, i) +
-             sum(z, theta_backward, i) * sum(z, theta_forward, i);
-    }
-    return eta;
-  }
 
   template <class T>
   void operator()(const T* z, T* r) const {
     using std::exp;
-    T eta = indicator(z);
+    T eta = indicator(z + 2);
     // tanh(eta) for eta >= 0 (sums of nonnegative variables), by exp alone.
     if (tanh_scaled) eta = (1.0 - exp(-2.0 * eta)) / (1.0 + exp(-2.0 * eta));
     r[0] = (z[1] - z[0]) * (1.0 / h0) * eta;
@@ -235,10 +214,9 @@ void StewartDiscretization::buildStepEquilibration() {
   if (!steps_free_ || options_.filippov_step_equilibration == StepEquilibration::kNone) return;
   for (int k = 0; k < ocp_.num_intervals; ++k) {
     for (int n = 1; n < options_.num_elements; ++n) {
+      const int element = k * options_.num_elements + n;
       Equilibration eq;
-      eq.element = k * options_.num_elements + n;
-      eq.previous_element = eq.element - 1;
-      eq.inputs = {grid_.steps[eq.previous_element], grid_.steps[eq.element]};
+      eq.inputs = {grid_.steps[element - 1], grid_.steps[element]};
       std::vector<int> blocks;  // first variable of each n_f block, in input order
       auto positions = [&](const std::vector<int>& block_starts) {
         std::vector<int> result;
@@ -249,29 +227,23 @@ void StewartDiscretization::buildStepEquilibration() {
         }
         return result;
       };
-      auto stage_thetas = [&](int element) {
+      auto stage_thetas = [&](int e) {
         std::vector<int> thetas;
-        for (const StagePoint& point : elements_[element].stages) thetas.push_back(point.theta);
+        for (const StagePoint& point : elements_[e].stages) thetas.push_back(point.theta);
         return thetas;
       };
-      const std::vector<int> backward = closureLambdas(eq.previous_element);
-      const std::vector<int> forward = closureLambdas(eq.element);
-      EquilibrationResidual residual{
-          nf_,
-          nominal_step_,
-          options_.filippov_step_equilibration == StepEquilibration::kTanhIndicator,
-          positions(backward),
-          positions(forward),
-          positions(stage_thetas(eq.previous_element)),
-          positions(stage_thetas(eq.element))};
+      eq.indicator = {nf_, positions(closureLambdas(element - 1)),
+                      positions(closureLambdas(element)), positions(stage_thetas(element - 1)),
+                      positions(stage_thetas(element))};
       for (int start : blocks) {
         for (int i = 0; i < nf_; ++i) eq.inputs.push_back(start + i);
       }
-      eq.lambda_sums = {backward, forward};
-      eq.theta_sums = {stage_thetas(eq.previous_element), stage_thetas(eq.element)};
-      eq.residual = makeAutoDiffFunction(static_cast<int>(eq.inputs.size()), 1, residual);
+      const EquilibrationResidual residual{
+          eq.indicator, nominal_step_,
+          options_.filippov_step_equilibration == StepEquilibration::kTanhIndicator};
       eq.relaxed_row = nlp_.addRelaxedRows(1, options_.filippov_equilibration_relaxation);
-      nlp_.addFunctionTerm(eq.residual, eq.inputs, -1, {{eq.relaxed_row, 1.0}});
+      nlp_.addFunctionTerm(makeAutoDiffFunction(static_cast<int>(eq.inputs.size()), 1, residual),
+                           eq.inputs, -1, {{eq.relaxed_row, 1.0}});
       addStepRegularizer(nlp_, options_, nominal_step_, eq.inputs[0], eq.inputs[1]);
       equilibration_.push_back(eq);
     }
@@ -284,19 +256,21 @@ void StewartDiscretization::buildStepEquilibration() {
 }
 
 void StewartDiscretization::equilibrateActiveSet() {
-  // A block component counts as zero when fixed at (near) zero, by the active set or as data.
-  auto nonzero = [&](const std::vector<int>& blocks, int mode) {
-    for (int start : blocks) {
-      const double lower = nlp_.variableLower(start + mode);
-      if (lower != nlp_.variableUpper(start + mode) || std::fabs(lower) > 1e-9) return true;
-    }
-    return false;
-  };
   for (const Equilibration& eq : equilibration_) {
+    // A block component counts as zero when fixed at (near) zero, by the active set or as data.
+    auto nonzero = [&](const std::vector<int>& positions, int mode) {
+      for (int p : positions) {
+        const int variable = eq.inputs[2 + p * nf_ + mode];
+        const double lower = nlp_.variableLower(variable);
+        if (lower != nlp_.variableUpper(variable) || std::fabs(lower) > 1e-9) return true;
+      }
+      return false;
+    };
+    const SwitchIndicator& sums = eq.indicator;
     bool indicator_positive = true;
     for (int i = 0; i < nf_; ++i) {
-      indicator_positive &= (nonzero(eq.lambda_sums[0], i) && nonzero(eq.lambda_sums[1], i)) ||
-                            (nonzero(eq.theta_sums[0], i) && nonzero(eq.theta_sums[1], i));
+      indicator_positive &= (nonzero(sums.lambda_backward, i) && nonzero(sums.lambda_forward, i)) ||
+                            (nonzero(sums.theta_backward, i) && nonzero(sums.theta_forward, i));
     }
     nlp_.setRowBounds(eq.relaxed_row, -kInf, kInf);
     if (indicator_positive) nlp_.setRowBounds(eq.equal_steps_row, 0.0, 0.0);
@@ -306,18 +280,9 @@ void StewartDiscretization::equilibrateActiveSet() {
 std::vector<double> StewartDiscretization::switchIndicators(const double* x) const {
   std::vector<double> indicators;
   for (const Equilibration& eq : equilibration_) {
-    double eta = 1.0;
-    for (int i = 0; i < nf_; ++i) {
-      double factor = 0.0;
-      for (const auto* sums : {&eq.lambda_sums, &eq.theta_sums}) {
-        double backward = 0.0, forward = 0.0;
-        for (int start : (*sums)[0]) backward += x[start + i];
-        for (int start : (*sums)[1]) forward += x[start + i];
-        factor += backward * forward;
-      }
-      eta *= factor;
-    }
-    indicators.push_back(eta);
+    std::vector<double> blocks;
+    for (size_t v = 2; v < eq.inputs.size(); ++v) blocks.push_back(x[eq.inputs[v]]);
+    indicators.push_back(eq.indicator(blocks.data()));
   }
   return indicators;
 }

@@ -10,6 +10,34 @@
 
 namespace fesd {
 
+/// The switch indicator of step equilibration (seed 001, eq. 31) at the boundary between two
+/// elements, on blocks of n_f values (lambda or theta at a point):
+///   eta = prod_i (sum_B lambda_i sum_F lambda_i + sum_B theta_i sum_F theta_i),
+/// B over the earlier element's closure, F over the later one's. The sums list block positions;
+/// the lambda block at the common boundary belongs to both.
+struct SwitchIndicator {
+  int nf;
+  std::vector<int> lambda_backward, lambda_forward, theta_backward, theta_forward;
+
+  template <class T>
+  T sum(const T* blocks, const std::vector<int>& positions, int mode) const {
+    T total = blocks[positions[0] * nf + mode];
+    for (size_t p = 1; p < positions.size(); ++p) total += blocks[positions[p] * nf + mode];
+    return total;
+  }
+  template <class T>
+  T factor(const T* blocks, int mode) const {
+    return sum(blocks, lambda_backward, mode) * sum(blocks, lambda_forward, mode) +
+           sum(blocks, theta_backward, mode) * sum(blocks, theta_forward, mode);
+  }
+  template <class T>
+  T operator()(const T* blocks) const {
+    T eta = factor(blocks, 0);
+    for (int i = 1; i < nf; ++i) eta *= factor(blocks, i);
+    return eta;
+  }
+};
+
 /// The FESD (or, with switch detection off, the standard fixed-step) discretisation of an
 /// OcpDefinition on a Filippov system in Stewart's form (seed 001, Sec. 3) as a relaxable MPCC:
 ///  - collocation equations of every finite element for xdot = F(x, u) theta (eq. 25), and for
@@ -84,10 +112,8 @@ class StewartDiscretization : public Discretization {
   };
   /// The step equilibration of the boundary between two elements of a control interval.
   struct Equilibration {
-    int previous_element, element;
-    std::vector<int> inputs;  ///< (h_{n-1}, h_n, lambda and theta blocks), as the function's
-    std::shared_ptr<const SmoothFunction> residual;
-    std::vector<std::vector<int>> lambda_sums, theta_sums;  ///< backward, forward: variables
+    std::vector<int> inputs;  ///< h_{n-1}, h_n, then the indicator's blocks
+    SwitchIndicator indicator;
     int relaxed_row, equal_steps_row;
   };
 
