@@ -43,7 +43,7 @@ const std::map<std::string, Command>& commands() {
         "    Gauss-Legendre, CSV. --radau-stages=1,2,3 --gauss-stages=1,2\n"
         "    --totals=16,24,32,48,64,96,128 --elements=2 (per step) --methods=fesd,standard\n"
         "    --kappa=0.01 (homotopy) --equilibration=indicator|tanh|none\n"
-        "    --equilibration-relaxation=1e3 (r of |dh/h0 eta| <= r sigma)"}},
+        "    --equilibration-relaxation=1e6 (r of |dh/h0 eta| <= r sigma)"}},
       {"ocp-filippov",
        {fesd_bench::ocpFilippov,
         "OCP (61) (seed 001), two sliding surfaces: terminal error of a fine re-simulation of\n"

@@ -66,9 +66,11 @@ struct DiscretizationOptions {
   StepEquilibration filippov_step_equilibration = StepEquilibration::kIndicator;
   /// r of the relaxed step equilibration |((h_n - h_{n-1}) / h0) eta_n| <= r sigma of a
   /// Filippov system. With r = 1 the relaxed NLPs of example (47) on coarse grids, whose
-  /// switch starts inside an element, could not move their steps and ended infeasible.
-  /// Polishing imposes eq. 31 exactly whatever r.
-  double filippov_equilibration_relaxation = 1e3;
+  /// switch starts inside an element, could not move their steps and ended infeasible; with
+  /// r = 1e3 some simulation steps of OCP (61)'s controls that leave a sliding mode did. So
+  /// the relaxed NLPs are guided by the step regulariser above, like the PDS's big M, and
+  /// polishing imposes eq. 31 exactly (h_{n-1} = h_n wherever eta_n cannot vanish).
+  double filippov_equilibration_relaxation = 1e6;
 };
 
 }  // namespace fesd
