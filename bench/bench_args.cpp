@@ -67,4 +67,12 @@ void Arguments::rejectUnused() const {
   }
 }
 
+fesd::StepEquilibration stepEquilibration(const Arguments& args) {
+  const std::string form = args.text("equilibration", "indicator");
+  if (form == "indicator") return fesd::StepEquilibration::kIndicator;
+  if (form == "tanh") return fesd::StepEquilibration::kTanhIndicator;
+  if (form == "none") return fesd::StepEquilibration::kNone;
+  throw std::invalid_argument("--equilibration takes indicator, tanh or none");
+}
+
 }  // namespace fesd_bench

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "fesd_trajopt/core/ocp_definition.h"
+
 namespace fesd_bench {
 
 /// Command-line options of the form --name=value (or --flag for "true").
@@ -26,5 +28,8 @@ class Arguments {
   std::map<std::string, std::string> values_;
   mutable std::map<std::string, bool> used_;
 };
+
+/// --equilibration=indicator|tanh|none: a Filippov system's step equilibration.
+fesd::StepEquilibration stepEquilibration(const Arguments& args);
 
 }  // namespace fesd_bench

@@ -6,6 +6,9 @@ namespace fesd_bench {
 
 /// Each command prints its results to stdout and returns the process exit code.
 int orderPds(const Arguments& args);
+int orderFilippov(const Arguments& args);
+int ocpFilippov(const Arguments& args);
+int signOcp(const Arguments& args);
 int derivatives(const Arguments& args);
 int ocpManipulation(const Arguments& args);
 int ocpAccuracy(const Arguments& args);

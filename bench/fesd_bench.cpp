@@ -43,6 +43,25 @@ const std::map<std::string, Command>& commands() {
         "Solve time vs N_ctrl (showcase) and vs bodies (lanes of pusher + puck, pruning on\n"
         "    and off), CSV. --sweeps=intervals,bodies --intervals=10,20,30,40,60,80\n"
         "    --lanes=1,2,3,4,6,8 --lane-intervals=10 --elements=2 --stages=2 --budget=120"}},
+      {"order-filippov",
+       {fesd_bench::orderFilippov,
+        "Example (47) (seed 001): terminal error vs step for FESD and standard, Radau-IIA and\n"
+        "    Gauss-Legendre, CSV. --radau-stages=1,2,3 --gauss-stages=1,2\n"
+        "    --totals=16,24,32,48,64,96,128 --elements=2 (per step) --methods=fesd,standard\n"
+        "    --kappa=0.01 (homotopy) --equilibration=indicator|tanh|none\n"
+        "    --equilibration-relaxation=1e6 (r of |dh/h0 eta| <= r sigma)"}},
+      {"ocp-filippov",
+       {fesd_bench::ocpFilippov,
+        "OCP (61) (seed 001), two sliding surfaces: terminal error of a fine re-simulation of\n"
+        "    the optimal controls vs CPU time, CSV. --stages=1,2,3,4 --elements=1,...,7\n"
+        "    --methods=fesd,standard --family=radau|gauss --equilibration=indicator|tanh|none\n"
+        "    --budget=120 (s per solve) --reference-stages=4 --reference-elements=12\n"
+        "    --print-steps (element lengths and switch indicators eta per run)"}},
+      {"sign-ocp",
+       {fesd_bench::signOcp,
+        "OCP (56) (seed 001): x0 found from forward-simulation guesses, FESD vs standard, with a\n"
+        "    homotopy or one relaxed NLP at a fixed sigma, CSV. --methods=fesd,standard\n"
+        "    --strategies=homotopy,fixed --fixed-sigma=1e-15 --guesses=-2.5,-2,...,2"}},
       {"order-pds",
        {fesd_bench::orderPds,
         "Example 1 (seed 000): terminal error vs step for FESD and standard, Radau-IIA.\n"

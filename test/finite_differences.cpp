@@ -126,4 +126,18 @@ Eigen::VectorXd randomVector(int size, std::mt19937& random, double low, double 
   return v;
 }
 
+DerivativeErrors checkRelaxedNlpAtRandomPoints(fesd::RelaxedMpcc& nlp, int trials, unsigned seed) {
+  std::mt19937 random(seed);
+  DerivativeErrors worst{0.0, 0.0};
+  for (int trial = 0; trial < trials; ++trial) {
+    nlp.setRelaxation(std::uniform_real_distribution<double>(0.0, 1.0)(random));
+    const Eigen::VectorXd x = randomVector(nlp.numVariables(), random, 0.05, 1.0);
+    const Eigen::VectorXd multipliers = randomVector(nlp.numConstraints(), random);
+    const DerivativeErrors errors = checkNlpAgainstFiniteDifferences(nlp, x, 0.7, multipliers);
+    worst.jacobian = std::max(worst.jacobian, errors.jacobian);
+    worst.hessian = std::max(worst.hessian, errors.hessian);
+  }
+  return worst;
+}
+
 }  // namespace fesd_test

@@ -41,4 +41,9 @@ DerivativeErrors checkNlpAgainstFiniteDifferences(const fesd::NlpProblem& nlp,
 
 Eigen::VectorXd randomVector(int size, std::mt19937& random, double low = -1.0, double high = 1.0);
 
+/// The worst errors of checkNlpAgainstFiniteDifferences over `trials` random relaxations,
+/// points with every variable in [0.05, 1] (inside any complementarity's domain) and
+/// multipliers.
+DerivativeErrors checkRelaxedNlpAtRandomPoints(fesd::RelaxedMpcc& nlp, int trials, unsigned seed);
+
 }  // namespace fesd_test

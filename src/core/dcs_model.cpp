@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "fesd_trajopt/core/fesd_discretization.h"
+
 namespace fesd {
 
 DcsModel::DcsModel(int state_size, int control_size, int constraint_size,
@@ -25,6 +27,11 @@ DcsModel::DcsModel(int state_size, int control_size, int constraint_size,
       constraints_->outputSize() != constraint_size_) {
     throw std::invalid_argument("DcsModel '" + name_ + "': constraints must map x to R^n_c");
   }
+}
+
+std::unique_ptr<Discretization> DcsModel::discretize(const OcpDefinition& ocp,
+                                                     const DiscretizationOptions& options) const {
+  return std::make_unique<FesdDiscretization>(ocp, options);
 }
 
 }  // namespace fesd

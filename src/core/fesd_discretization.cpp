@@ -13,66 +13,33 @@ namespace {
 
 constexpr double kInf = NlpAssembly::kInfinity;
 
-void requireSize(const Eigen::VectorXd& v, int size, const char* what) {
-  if (v.size() != 0 && v.size() != size) {
-    throw std::invalid_argument(std::string("OcpDefinition: ") + what + " must have size " +
-                                std::to_string(size) + " or be empty");
-  }
-}
-
-void requireFunction(const std::shared_ptr<const SmoothFunction>& f, int inputs, bool scalar,
-                     const char* what) {
-  if (!f) return;
-  if (f->inputSize() != inputs || (scalar && f->outputSize() != 1)) {
-    throw std::invalid_argument(std::string("OcpDefinition: ") + what + " has the wrong size");
-  }
-}
-
 }  // namespace
 
 FesdDiscretization::FesdDiscretization(OcpDefinition ocp, DiscretizationOptions options)
     : ocp_(std::move(ocp)),
+      model_(std::dynamic_pointer_cast<const DcsModel>(ocp_.model)),
       options_(options),
       tableau_(makeTableau(options.family, options.num_stages)) {
-  if (!ocp_.model) throw std::invalid_argument("OcpDefinition: no model");
-  nx_ = ocp_.model->stateSize();
-  nu_ = ocp_.model->controlSize();
-  nc_ = ocp_.model->constraintSize();
+  if (!model_) throw std::invalid_argument("FesdDiscretization: the model is not a DcsModel");
+  validateOcp(ocp_, options_);
+  if (ocp_.initial_state_lower.size()) {
+    throw std::invalid_argument("FesdDiscretization: a free initial state is not supported");
+  }
+  nx_ = model_->stateSize();
+  nu_ = model_->controlSize();
+  nc_ = model_->constraintSize();
   if (!tableau_.lastStageIsEndPoint()) {
     throw std::invalid_argument("FESD discretisation: scheme " + tableau_.name() +
                                 " has no stage at the element end (c_ns != 1); use Radau-IIA");
   }
-  if (options_.num_elements < 1) throw std::invalid_argument("num_elements must be >= 1");
-  if (ocp_.num_intervals < 1) throw std::invalid_argument("num_intervals must be >= 1");
-  if (!(ocp_.horizon > 0.0) || !std::isfinite(ocp_.horizon)) {
-    throw std::invalid_argument("horizon must be positive and finite");
-  }
-  if (!(options_.step_bound >= 0.0 && options_.step_bound <= 1.0)) {
-    throw std::invalid_argument("step_bound (gamma_h) must be in [0, 1]");
-  }
-  if (!(options_.equilibration_big_m > 0.0)) {
-    throw std::invalid_argument("equilibration_big_m must be positive");
-  }
-  if (ocp_.initial_state.size() != nx_) {
-    throw std::invalid_argument("OcpDefinition: initial_state must have size n_x");
-  }
-  requireSize(ocp_.control_lower, nu_, "control_lower");
-  requireSize(ocp_.control_upper, nu_, "control_upper");
-  requireSize(ocp_.state_lower, nx_, "state_lower");
-  requireSize(ocp_.state_upper, nx_, "state_upper");
-  requireFunction(ocp_.lagrange_cost, nx_ + nu_, true, "lagrange_cost");
-  requireFunction(ocp_.mayer_cost, nx_, true, "mayer_cost");
-  requireFunction(ocp_.path_constraints, nx_ + nu_, false, "path_constraints");
-  requireFunction(ocp_.terminal_constraints, nx_, false, "terminal_constraints");
-
-  nominal_step_ = ocp_.horizon / (ocp_.num_intervals * options_.num_elements);
+  nominal_step_ = fesd::nominalStep(ocp_, options_);
   // Without constraints nothing can switch: the steps stay fixed and no MPCC machinery is built.
   steps_free_ = options_.switch_detection && nc_ > 0;
   buildVariables();
   buildDynamics();
   buildComplementarity();
   buildStepEquilibration();
-  buildCostsAndConstraints();
+  addCostsAndConstraints(nlp_, grid_, ocp_, tableau_);
   nlp_.finalize();
 }
 
@@ -90,11 +57,12 @@ void FesdDiscretization::buildVariables() {
       steps_free_ ? (1.0 - options_.step_bound) * nominal_step_ : nominal_step_;
   const double step_upper =
       steps_free_ ? (1.0 + options_.step_bound) * nominal_step_ : nominal_step_;
+  grid_.elements_per_interval = options_.num_elements;
   for (int k = 0; k < ocp_.num_intervals; ++k) {
-    controls_.push_back(nlp_.addVariables(nu_, -kInf, kInf));
+    grid_.controls.push_back(nlp_.addVariables(nu_, -kInf, kInf));
     freeControl(k);
     for (int n = 0; n < options_.num_elements; ++n) {
-      steps_.push_back(nlp_.addVariables(1, step_lower, step_upper, nominal_step_));
+      grid_.steps.push_back(nlp_.addVariables(1, step_lower, step_upper, nominal_step_));
       std::vector<StagePoint> points(ns);
       for (StagePoint& point : points) {
         point.x = nlp_.addVariables(nx_, -kInf, kInf);
@@ -106,6 +74,9 @@ void FesdDiscretization::buildVariables() {
         point.lambda = nlp_.addVariables(nc_, 0.0, kInf);
       }
       stages_.push_back(points);
+      grid_.stage_states.emplace_back();
+      for (const StagePoint& point : points) grid_.stage_states.back().push_back(point.x);
+      grid_.end_states.push_back(points.back().x);
     }
   }
   core_variables_ = nlp_.numVariables();
@@ -119,16 +90,8 @@ std::vector<int> FesdDiscretization::velocityInputs(int element, int stage) cons
   const StagePoint& point = stages_[element][stage];
   std::vector<int> inputs;
   for (int d = 0; d < nx_; ++d) inputs.push_back(point.x + d);
-  for (int d = 0; d < nu_; ++d) inputs.push_back(controlOf(element) + d);
+  for (int d = 0; d < nu_; ++d) inputs.push_back(grid_.controlOf(element) + d);
   for (int d = 0; d < nc_; ++d) inputs.push_back(point.lambda + d);
-  return inputs;
-}
-
-std::vector<int> FesdDiscretization::stateControlInputs(const StagePoint& point,
-                                                        int element) const {
-  std::vector<int> inputs;
-  for (int d = 0; d < nx_; ++d) inputs.push_back(point.x + d);
-  for (int d = 0; d < nu_; ++d) inputs.push_back(controlOf(element) + d);
   return inputs;
 }
 
@@ -138,7 +101,7 @@ void FesdDiscretization::addLifting(const StagePoint& point) {
   for (int k = 0; k < nc_; ++k) nlp_.addLinear(row + k, point.s + k, 1.0);
   std::vector<int> inputs;
   for (int d = 0; d < nx_; ++d) inputs.push_back(point.x + d);
-  nlp_.addFunctionTerm(ocp_.model->constraints(), inputs, -1, {{row, -1.0}});
+  nlp_.addFunctionTerm(model_->constraints(), inputs, -1, {{row, -1.0}});
 }
 
 void FesdDiscretization::buildDynamics() {
@@ -158,18 +121,11 @@ void FesdDiscretization::buildDynamics() {
       for (int i = 0; i < ns; ++i) {
         if (tableau_.a(i, j) != 0.0) targets.push_back({first_row + i * nx_, -tableau_.a(i, j)});
       }
-      nlp_.addFunctionTerm(ocp_.model->velocity(), velocityInputs(e, j), steps_[e], targets);
+      nlp_.addFunctionTerm(model_->velocity(), velocityInputs(e, j), grid_.steps[e], targets);
     }
     for (const StagePoint& point : stages_[e]) addLifting(point);
   }
-  if (!steps_free_) return;
-  const double interval_length = ocp_.horizon / ocp_.num_intervals;
-  for (int k = 0; k < ocp_.num_intervals; ++k) {
-    const int row = nlp_.addRows(1, interval_length, interval_length);
-    for (int n = 0; n < options_.num_elements; ++n) {
-      nlp_.addLinear(row, steps_[k * options_.num_elements + n], 1.0);
-    }
-  }
+  if (steps_free_) addIntervalLengthRows(nlp_, grid_, ocp_);
 }
 
 void FesdDiscretization::buildComplementarity() {
@@ -219,15 +175,6 @@ void FesdDiscretization::buildStepEquilibration() {
   auxiliary_variables_begin_ = nlp_.numVariables();
   auxiliary_rows_begin_ = nlp_.numConstraints();
   const double big_m = options_.equilibration_big_m * nominal_step_;
-  // ((h_n - h_{n-1}) / h0)^2 = 1/2 z^T Q z on z = (h_{n-1}, h_n)
-  Eigen::SparseMatrix<double> difference(2, 2);
-  const double w = 2.0 / (nominal_step_ * nominal_step_);
-  difference.insert(0, 0) = w;
-  difference.insert(1, 1) = w;
-  difference.insert(0, 1) = -w;
-  difference.insert(1, 0) = -w;
-  const auto step_difference =
-      std::make_shared<QuadraticFunction>(difference, Eigen::Vector2d::Zero(), 0.0);
   auto add_row = [&](const LinearExpression& expression, double lower, double upper) {
     const int row = nlp_.addRows(1, lower, upper);
     nlp_.addLinear(row, expression);
@@ -307,11 +254,8 @@ void FesdDiscretization::buildStepEquilibration() {
       for (int nu : aux.nu) add_row({{aux.any_switch, 1.0}, {nu, -1.0}}, 0.0, kInf);
       add_row(concat({{aux.any_switch, 1.0}}, any_switch_upper), -kInf, 0.0);
       // -eta M <= h_{n-1} - h_n <= eta M
-      const int h_prev = steps_[element - 1], h = steps_[element];
-      if (options_.step_regularization > 0.0) {
-        nlp_.addFunctionTerm(step_difference, {h_prev, h}, -1,
-                             {{NlpAssembly::kObjective, options_.step_regularization, true}});
-      }
+      const int h_prev = grid_.steps[element - 1], h = grid_.steps[element];
+      addStepRegularizer(nlp_, options_, nominal_step_, h_prev, h);
       add_row({{h_prev, 1.0}, {h, -1.0}, {aux.any_switch, -big_m}}, -kInf, 0.0);
       add_row({{h_prev, 1.0}, {h, -1.0}, {aux.any_switch, big_m}}, 0.0, kInf);
       equilibration_.push_back(aux);
@@ -322,7 +266,7 @@ void FesdDiscretization::buildStepEquilibration() {
   for (EquilibrationAuxiliaries& aux : equilibration_) {
     aux.equal_steps_row = nlp_.addRows(1, -kInf, kInf);
     nlp_.addLinear(aux.equal_steps_row,
-                   {{steps_[aux.previous_element], 1.0}, {steps_[aux.element], -1.0}});
+                   {{grid_.steps[aux.previous_element], 1.0}, {grid_.steps[aux.element], -1.0}});
   }
   nlp_.setActiveSetHook([this](const double* x) { equilibrateActiveSet(x); });
 }
@@ -358,33 +302,6 @@ void FesdDiscretization::equilibrateActiveSet(const double* x) {
   }
 }
 
-void FesdDiscretization::buildCostsAndConstraints() {
-  const StagePoint& end = stages_.back().back();
-  std::vector<int> end_state;
-  for (int d = 0; d < nx_; ++d) end_state.push_back(end.x + d);
-  for (int e = 0; e < numElements(); ++e) {
-    for (int j = 0; j < tableau_.stages; ++j) {
-      const StagePoint& point = stages_[e][j];
-      if (ocp_.lagrange_cost) {
-        nlp_.addFunctionTerm(ocp_.lagrange_cost, stateControlInputs(point, e), steps_[e],
-                             {{NlpAssembly::kObjective, tableau_.b(j)}});
-      }
-      const bool boundary = j + 1 == tableau_.stages;
-      if (ocp_.path_constraints && (boundary || ocp_.path_constraints_at_all_stages)) {
-        const int row = nlp_.addRows(ocp_.path_constraints->outputSize(), -kInf, 0.0);
-        nlp_.addFunctionTerm(ocp_.path_constraints, stateControlInputs(point, e), -1, {{row, 1.0}});
-      }
-    }
-  }
-  if (ocp_.mayer_cost) {
-    nlp_.addFunctionTerm(ocp_.mayer_cost, end_state, -1, {{NlpAssembly::kObjective, 1.0}});
-  }
-  if (ocp_.terminal_constraints) {
-    const int row = nlp_.addRows(ocp_.terminal_constraints->outputSize(), -kInf, 0.0);
-    nlp_.addFunctionTerm(ocp_.terminal_constraints, end_state, -1, {{row, 1.0}});
-  }
-}
-
 void FesdDiscretization::setInitialState(const Eigen::VectorXd& x0) {
   if (x0.size() != nx_) throw std::invalid_argument("initial state has the wrong size");
   ocp_.initial_state = x0;
@@ -393,7 +310,7 @@ void FesdDiscretization::setInitialState(const Eigen::VectorXd& x0) {
     nlp_.initialGuess()[start_.x + d] = x0(d);
   }
   Eigen::VectorXd c0(nc_);
-  ocp_.model->constraints()->evaluate(x0.data(), c0.data());
+  model_->constraints()->evaluate(x0.data(), c0.data());
   for (int k = 0; k < nc_; ++k) {
     nlp_.setVariableBounds(start_.s + k, c0(k), c0(k));
     nlp_.initialGuess()[start_.s + k] = c0(k);
@@ -409,26 +326,17 @@ void FesdDiscretization::setInitialMultipliers(const Eigen::VectorXd& lambda0) {
   }
 }
 
+void FesdDiscretization::continueFrom(const Trajectory& previous) {
+  setInitialMultipliers(previous.elements.back().stage_multipliers.rightCols(1));
+}
+
 void FesdDiscretization::fixControl(int interval, const Eigen::VectorXd& u) {
   if (u.size() != nu_) throw std::invalid_argument("control has the wrong size");
-  for (int d = 0; d < nu_; ++d) {
-    nlp_.setVariableBounds(controls_.at(interval) + d, u(d), u(d));
-    nlp_.initialGuess()[controls_[interval] + d] = u(d);
-  }
+  fesd::fixControl(nlp_, grid_, interval, u);
 }
 
 void FesdDiscretization::freeControl(int interval) {
-  for (int d = 0; d < nu_; ++d) {
-    nlp_.setVariableBounds(controls_.at(interval) + d,
-                           ocp_.control_lower.size() ? ocp_.control_lower(d) : -kInf,
-                           ocp_.control_upper.size() ? ocp_.control_upper(d) : kInf);
-    nlp_.initialGuess()[controls_[interval] + d] = clippedControl(interval, d, 0.0);
-  }
-}
-
-double FesdDiscretization::clippedControl(int interval, int component, double value) const {
-  const int index = controls_[interval] + component;
-  return std::min(std::max(value, nlp_.variableLower(index)), nlp_.variableUpper(index));
+  fesd::freeControl(nlp_, grid_, ocp_, interval);
 }
 
 std::vector<double> FesdDiscretization::constantGuess(
@@ -443,19 +351,17 @@ std::vector<double> FesdDiscretization::constantGuess(
       }
     }
   }
-  for (int e = 0; e < numElements(); ++e) x[steps_[e]] = nominal_step_;
-  for (int k = 0; k < ocp_.num_intervals; ++k) {
-    for (int d = 0; d < nu_; ++d) {
-      const double wanted = k < static_cast<int>(controls.size()) ? controls[k](d) : 0.0;
-      x[controls_[k] + d] = clippedControl(k, d, wanted);
-    }
-  }
+  for (int e = 0; e < numElements(); ++e) x[grid_.steps[e]] = nominal_step_;
+  guessControls(nlp_, grid_, nu_, controls, x);
   completeAuxiliaries(x);
   return x;
 }
 
-std::vector<double> FesdDiscretization::adoptedGuess(const FesdDiscretization& other,
+std::vector<double> FesdDiscretization::adoptedGuess(const Discretization& other_discretization,
                                                      const std::vector<double>& solution) const {
+  const auto* other_pointer = dynamic_cast<const FesdDiscretization*>(&other_discretization);
+  if (!other_pointer) throw std::invalid_argument("adoptedGuess: not a FesdDiscretization");
+  const FesdDiscretization& other = *other_pointer;
   if (other.core_variables_ != core_variables_ || other.numElements() != numElements() ||
       other.tableau_.stages != tableau_.stages ||
       static_cast<int>(solution.size()) != other.nlp_.numVariables()) {
@@ -478,7 +384,7 @@ std::vector<double> FesdDiscretization::translatedGuess(
   auto move_point = [&](const StagePoint& point) {
     Eigen::Map<Eigen::VectorXd> state(x.data() + point.x, nx_);
     state += shift;
-    ocp_.model->constraints()->evaluate(state.data(), x.data() + point.s);
+    model_->constraints()->evaluate(state.data(), x.data() + point.s);
   };
   for (const auto& element : stages_) {
     for (const StagePoint& point : element) move_point(point);
@@ -520,46 +426,32 @@ void FesdDiscretization::completeAuxiliaries(std::vector<double>& x) const {
 
 Trajectory FesdDiscretization::extract(const double* x, double start_time,
                                        double activity_tolerance) const {
-  const int ns = tableau_.stages;
-  Trajectory trajectory;
-  const double interval_length = ocp_.horizon / ocp_.num_intervals;
-  for (int k = 0; k <= ocp_.num_intervals; ++k) {
-    trajectory.interval_times.push_back(start_time + k * interval_length);
-  }
-  for (int k = 0; k < ocp_.num_intervals; ++k) {
-    trajectory.controls.push_back(Eigen::Map<const Eigen::VectorXd>(x + controls_[k], nu_));
-  }
-  double time = start_time;
-  trajectory.times.push_back(time);
-  trajectory.states.push_back(Eigen::Map<const Eigen::VectorXd>(x + start_.x, nx_));
+  Trajectory trajectory = gridTrajectory(x, grid_, ocp_, start_.x, nc_, start_time);
   for (int e = 0; e < numElements(); ++e) {
-    ElementValues element{e / options_.num_elements,
-                          time,
-                          x[steps_[e]],
-                          Eigen::MatrixXd(nx_, ns),
-                          Eigen::MatrixXd(nc_, ns),
-                          Eigen::MatrixXd(nc_, ns),
-                          Eigen::VectorXd()};
-    for (int j = 0; j < ns; ++j) {
+    ElementValues& element = trajectory.elements[e];
+    for (int j = 0; j < tableau_.stages; ++j) {
       const StagePoint& point = stages_[e][j];
-      element.stage_states.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.x, nx_);
       element.stage_multipliers.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.lambda, nc_);
       element.stage_constraints.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.s, nc_);
     }
     if (nc_ > 0) {
       element.lowest_constraints = lowestConstraintBetweenStages(
-          *ocp_.model->constraints(), tableau_.c, trajectory.states.back(), element.stage_states);
+          *model_->constraints(), tableau_.c, trajectory.states[e], element.stage_states);
     }
-    time += element.step;
-    trajectory.times.push_back(time);
-    trajectory.states.push_back(element.stage_states.col(ns - 1));
-    trajectory.elements.push_back(std::move(element));
   }
   std::vector<bool> initially_active(nc_);
   for (int k = 0; k < nc_; ++k) initially_active[k] = x[start_.s + k] <= activity_tolerance;
   trajectory.switches = detectSwitches(trajectory.elements, initially_active, activity_tolerance);
   trajectory.unresolved_switches = findUnresolvedSwitches(trajectory.elements, activity_tolerance);
   return trajectory;
+}
+
+std::vector<bool> FesdDiscretization::activeAt(const Eigen::VectorXd& x, double tolerance) const {
+  Eigen::VectorXd c(nc_);
+  model_->constraints()->evaluate(x.data(), c.data());
+  std::vector<bool> active(nc_);
+  for (int k = 0; k < nc_; ++k) active[k] = c(k) <= tolerance;
+  return active;
 }
 
 }  // namespace fesd

@@ -9,7 +9,8 @@
 
 namespace fesd {
 
-FesdIntegrator::FesdIntegrator(std::shared_ptr<const DcsModel> model, SimulationOptions options)
+FesdIntegrator::FesdIntegrator(std::shared_ptr<const DynamicsModel> model,
+                               SimulationOptions options)
     : model_(std::move(model)), options_(std::move(options)) {
   if (!model_) throw std::invalid_argument("FesdIntegrator: no model");
 }
@@ -34,18 +35,19 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
   step_problem.initial_state = x0;
   step_problem.horizon = horizon / num_steps;
   step_problem.num_intervals = 1;
-  FesdDiscretization discretization(step_problem, options_.discretization);
+  const std::unique_ptr<Discretization> discretization_pointer =
+      discretize(step_problem, options_.discretization);
+  Discretization& discretization = *discretization_pointer;
   MpccSolver solver(options_.homotopy);
   MpccSolver retry_solver(options_.retry_homotopy);
 
   SimulationResult result;
   result.status = SolveStatus::kSuccess;
   Eigen::VectorXd state = x0;
-  Eigen::VectorXd last_multipliers;
   std::vector<double> previous_solution;
   for (int step = 0; step < num_steps; ++step) {
     discretization.setInitialState(state);
-    if (step > 0) discretization.setInitialMultipliers(last_multipliers);
+    if (step > 0) discretization.continueFrom(result.trajectory);
     const Eigen::VectorXd u =
         controls.empty() ? Eigen::VectorXd() : controls[controls.size() == 1 ? 0 : step];
     if (nu > 0) discretization.fixControl(0, u);
@@ -66,7 +68,6 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
                                               options_.activity_tolerance);
     result.trajectory.append(piece);
     state = piece.finalState();
-    last_multipliers = piece.elements.back().stage_multipliers.rightCols(1);
     if (!report.converged()) {
       result.status = report.status;
       result.message = "step " + std::to_string(step) + " of " + std::to_string(num_steps) +
@@ -75,12 +76,9 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
     }
     ++result.completed_steps;
   }
-  Eigen::VectorXd c0(model_->constraintSize());
-  model_->constraints()->evaluate(x0.data(), c0.data());
-  std::vector<bool> initially_active(c0.size());
-  for (int k = 0; k < c0.size(); ++k) initially_active[k] = c0(k) <= options_.activity_tolerance;
-  result.trajectory.switches =
-      detectSwitches(result.trajectory.elements, initially_active, options_.activity_tolerance);
+  result.trajectory.switches = detectSwitches(
+      result.trajectory.elements, discretization.activeAt(x0, options_.activity_tolerance),
+      options_.activity_tolerance);
   result.trajectory.unresolved_switches =
       findUnresolvedSwitches(result.trajectory.elements, options_.activity_tolerance);
   if (result.status == SolveStatus::kSuccess) {

@@ -45,6 +45,12 @@ int NlpAssembly::addRows(int count, double lower, double upper) {
   return first;
 }
 
+int NlpAssembly::addRelaxedRows(int count, double scale) {
+  const int first = addRows(count, -scale * sigma_, scale * sigma_);
+  for (int r = 0; r < count; ++r) relaxed_rows_.push_back({first + r, scale});
+  return first;
+}
+
 void NlpAssembly::addLinear(int row, int variable, double coefficient) {
   checkNotFinalized();
   linear_.push_back({row, variable, coefficient});
@@ -325,6 +331,7 @@ void NlpAssembly::hessian(const double* x, double objective_factor, const double
 void NlpAssembly::setRelaxation(double sigma) {
   sigma_ = sigma;
   for (int row : complementarity_rows_) g_upper_[row] = sigma;
+  for (const auto& [row, scale] : relaxed_rows_) setRowBounds(row, -scale * sigma, scale * sigma);
 }
 
 bool NlpAssembly::fixActiveSet(const double* x, int flip) {

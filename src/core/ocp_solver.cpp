@@ -24,13 +24,13 @@ std::string resultMessage(const MpccReport& report, const Trajectory& trajectory
 
 OcpSolver::OcpSolver(OcpDefinition ocp, OcpOptions options)
     : options_(std::move(options)),
-      discretization_(std::make_unique<FesdDiscretization>(ocp, options_.discretization)),
+      discretization_(discretize(ocp, options_.discretization)),
       solver_(options_.homotopy),
       fixed_grid_solver_(fixedGridHomotopy(options_)) {
   if (discretization_->stepsAreFree() && options_.fixed_grid_until_sigma > 0.0) {
     DiscretizationOptions fixed = options_.discretization;
     fixed.switch_detection = false;
-    fixed_grid_ = std::make_unique<FesdDiscretization>(std::move(ocp), fixed);
+    fixed_grid_ = discretize(ocp, fixed);
   }
 }
 
@@ -69,7 +69,7 @@ OcpSolution OcpSolver::solve(const OcpSolution& previous) {
                 *discretization_);
 }
 
-OcpSolution OcpSolver::finish(MpccReport report, const FesdDiscretization& source) const {
+OcpSolution OcpSolver::finish(MpccReport report, const Discretization& source) const {
   OcpSolution solution;
   solution.report = std::move(report);
   solution.status = solution.report.status;

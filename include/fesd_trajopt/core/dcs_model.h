@@ -3,6 +3,7 @@
 #include <memory>
 #include <string>
 
+#include "fesd_trajopt/core/dynamics_model.h"
 #include "fesd_trajopt/core/smooth_function.h"
 
 namespace fesd {
@@ -14,16 +15,19 @@ namespace fesd {
 ///  - the constraints  c(x)  on x.
 /// The discretisation only ever evaluates these two, so a model may be analytic or built by
 /// automatic differentiation (see autodiff_model.h).
-class DcsModel {
+class DcsModel : public DynamicsModel {
  public:
   DcsModel(int state_size, int control_size, int constraint_size,
            std::shared_ptr<const SmoothFunction> velocity,
            std::shared_ptr<const SmoothFunction> constraints, std::string name);
 
-  int stateSize() const { return state_size_; }
-  int controlSize() const { return control_size_; }
+  int stateSize() const override { return state_size_; }
+  int controlSize() const override { return control_size_; }
   int constraintSize() const { return constraint_size_; }
-  const std::string& name() const { return name_; }
+  const std::string& name() const override { return name_; }
+  /// A FesdDiscretization.
+  std::unique_ptr<Discretization> discretize(const OcpDefinition& ocp,
+                                             const DiscretizationOptions& options) const override;
 
   const std::shared_ptr<const SmoothFunction>& velocity() const { return velocity_; }
   const std::shared_ptr<const SmoothFunction>& constraints() const { return constraints_; }

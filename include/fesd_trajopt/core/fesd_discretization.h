@@ -3,9 +3,9 @@
 #include <vector>
 
 #include "fesd_trajopt/core/butcher_tableau.h"
-#include "fesd_trajopt/core/nlp_assembly.h"
-#include "fesd_trajopt/core/ocp_definition.h"
-#include "fesd_trajopt/core/trajectory.h"
+#include "fesd_trajopt/core/collocation_grid.h"
+#include "fesd_trajopt/core/dcs_model.h"
+#include "fesd_trajopt/core/discretization.h"
 
 namespace fesd {
 
@@ -20,43 +20,46 @@ namespace fesd {
 ///  - costs by the RK quadrature, control/state bounds, path and terminal constraints.
 /// The start state and the controls are NLP variables, fixed or bounded through their bounds,
 /// so one structure serves optimal control and simulation alike.
-class FesdDiscretization {
+class FesdDiscretization : public Discretization {
  public:
   FesdDiscretization(OcpDefinition ocp, DiscretizationOptions options);
   // The NLP's active-set hook refers to this object: it stays where it was built.
   FesdDiscretization(const FesdDiscretization&) = delete;
   FesdDiscretization& operator=(const FesdDiscretization&) = delete;
 
-  NlpAssembly& nlp() { return nlp_; }
-  const NlpAssembly& nlp() const { return nlp_; }
+  NlpAssembly& nlp() override { return nlp_; }
+  const NlpAssembly& nlp() const override { return nlp_; }
   const OcpDefinition& ocp() const { return ocp_; }
   const DiscretizationOptions& options() const { return options_; }
   const ButcherTableau& tableau() const { return tableau_; }
   /// True when element lengths are free (FESD on and the model has constraints).
-  bool stepsAreFree() const { return steps_free_; }
+  bool stepsAreFree() const override { return steps_free_; }
   int numElements() const { return static_cast<int>(stages_.size()); }  ///< all intervals
   double nominalStep() const { return nominal_step_; }
 
   /// Fixes the start state (bounds and guess) and updates its lifted constraint values.
-  void setInitialState(const Eigen::VectorXd& x0);
+  void setInitialState(const Eigen::VectorXd& x0) override;
   /// Sets lambda just before the start (default 0), e.g. to the end of a previous simulation step.
   void setInitialMultipliers(const Eigen::VectorXd& lambda0);
+  /// lambda before the start: the previous step's last stage multipliers.
+  void continueFrom(const Trajectory& previous) override;
   /// Fixes the control of interval k to u (simulation).
-  void fixControl(int interval, const Eigen::VectorXd& u);
+  void fixControl(int interval, const Eigen::VectorXd& u) override;
   /// Frees the control of interval k within the OCP's control bounds.
   void freeControl(int interval);
 
   /// A guess with every state at the start state, lambda = 0, nominal steps and the given
   /// controls (clipped to their bounds; empty means 0); auxiliaries made consistent.
-  std::vector<double> constantGuess(const std::vector<Eigen::VectorXd>& controls = {}) const;
+  std::vector<double> constantGuess(
+      const std::vector<Eigen::VectorXd>& controls = {}) const override;
   /// The solution of a previous, equally structured problem moved to the current start state:
   /// every stage state shifted by (start - old start), c(x) re-evaluated, lambda and steps kept.
   /// A simulation step's guess from the step before (smooth motion repeats its increments).
-  std::vector<double> translatedGuess(const std::vector<double>& previous_solution) const;
+  std::vector<double> translatedGuess(const std::vector<double>& previous_solution) const override;
   /// A solution of a discretisation of the same OCP with the same grid sizes (e.g. the
   /// standard method's) as a guess for this one: shared variables copied, auxiliaries completed.
-  std::vector<double> adoptedGuess(const FesdDiscretization& other,
-                                   const std::vector<double>& solution) const;
+  std::vector<double> adoptedGuess(const Discretization& other,
+                                   const std::vector<double>& solution) const override;
   /// Sets the step-equilibration auxiliaries (pi, max, nu, OR) of x consistently with its
   /// s and lambda values, so a guess starts (nearly) feasible for them.
   void completeAuxiliaries(std::vector<double>& x) const;
@@ -64,10 +67,12 @@ class FesdDiscretization {
   /// Reads the trajectory (times, states, stage values, controls, switches) from a solution;
   /// times start at start_time.
   Trajectory extract(const double* x, double start_time = 0.0,
-                     double activity_tolerance = kDefaultActivityTolerance) const;
+                     double activity_tolerance = kDefaultActivityTolerance) const override;
+  /// c_k(x) <= tolerance.
+  std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const override;
 
-  int controlIndex(int interval) const { return controls_[interval]; }
-  int stepIndex(int element) const { return steps_[element]; }
+  int controlIndex(int interval) const { return grid_.controls[interval]; }
+  int stepIndex(int element) const { return grid_.steps[element]; }
   int stateIndex(int element, int stage) const { return stages_[element][stage].x; }
   int startStateIndex() const { return start_.x; }
 
@@ -91,7 +96,6 @@ class FesdDiscretization {
   void buildDynamics();
   void buildComplementarity();
   void buildStepEquilibration();
-  void buildCostsAndConstraints();
   /// The polishing counterpart of step equilibration (NlpAssembly's active-set hook): with the
   /// complementarity sides fixed, nu > 0 exactly when some c and some lambda in a boundary's
   /// sums are nonzero (Table I). The auxiliaries' inequalities would pin them without interior,
@@ -100,12 +104,10 @@ class FesdDiscretization {
   void addLifting(const StagePoint& point);
   LinearExpression rangeExpression(int first, int count, int stride) const;
   const StagePoint& previousPoint(int element) const;
-  int controlOf(int element) const { return controls_[element / options_.num_elements]; }
   std::vector<int> velocityInputs(int element, int stage) const;
-  std::vector<int> stateControlInputs(const StagePoint& point, int element) const;
-  double clippedControl(int interval, int component, double value) const;
 
   OcpDefinition ocp_;
+  std::shared_ptr<const DcsModel> model_;
   DiscretizationOptions options_;
   ButcherTableau tableau_;
   int nx_, nu_, nc_;
@@ -113,8 +115,7 @@ class FesdDiscretization {
   bool steps_free_;
   NlpAssembly nlp_;
   StagePoint start_;
-  std::vector<int> controls_;                    ///< per interval
-  std::vector<int> steps_;                       ///< per element (global)
+  CollocationGrid grid_;
   std::vector<std::vector<StagePoint>> stages_;  ///< per element, per stage
   std::vector<EquilibrationAuxiliaries> equilibration_;
   int core_variables_ = 0;  ///< start, controls, steps, stage points: the same in any method

@@ -5,7 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "fesd_trajopt/core/fesd_discretization.h"
+#include "fesd_trajopt/core/discretization.h"
+#include "fesd_trajopt/core/dynamics_model.h"
 #include "fesd_trajopt/core/mpcc_solver.h"
 
 namespace fesd {
@@ -52,11 +53,11 @@ struct SimulationResult {
   int retried_steps = 0;  ///< steps that needed the retry homotopy
 };
 
-/// Simulates a DCS with FESD: num_steps steps of length horizon / num_steps, each with
-/// num_elements finite elements, solved one after another as small MPCCs.
+/// Simulates a nonsmooth system (any DynamicsModel) with FESD: num_steps steps of length horizon /
+/// num_steps, each with num_elements finite elements, solved one after another as small MPCCs.
 class FesdIntegrator {
  public:
-  FesdIntegrator(std::shared_ptr<const DcsModel> model, SimulationOptions options);
+  FesdIntegrator(std::shared_ptr<const DynamicsModel> model, SimulationOptions options);
 
   /// `controls` holds one control per step, a single control for all steps, or nothing when
   /// the model has no controls. Stops at the first step that does not converge.
@@ -64,7 +65,7 @@ class FesdIntegrator {
                             const std::vector<Eigen::VectorXd>& controls = {});
 
  private:
-  std::shared_ptr<const DcsModel> model_;
+  std::shared_ptr<const DynamicsModel> model_;
   SimulationOptions options_;
 };
 

@@ -47,6 +47,9 @@ class NlpAssembly : public RelaxedMpcc {
   int addVariables(int count, double lower, double upper, double initial = 0.0);
   /// Adds `count` rows with common bounds; returns the first index.
   int addRows(int count, double lower, double upper);
+  /// Adds `count` equality rows relaxed like the complementarity:
+  /// -scale * sigma <= g <= scale * sigma.
+  int addRelaxedRows(int count, double scale = 1.0);
   void addLinear(int row, int variable, double coefficient);
   void addLinear(int row, const LinearExpression& expression);
   /// Adds the row (left^T x)(right^T x) <= sigma, counted as a complementarity constraint.
@@ -134,6 +137,7 @@ class NlpAssembly : public RelaxedMpcc {
   std::vector<LinearEntry> linear_;
   std::vector<Complementarity> complementarities_;
   std::vector<int> complementarity_rows_;
+  std::vector<std::pair<int, double>> relaxed_rows_;  ///< row, scale
   std::vector<FunctionTerm> terms_;
   SlotMap jacobian_slots_, hessian_slots_;
   double sigma_ = 0.0;

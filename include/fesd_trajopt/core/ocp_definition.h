@@ -5,18 +5,24 @@
 #include <Eigen/Dense>
 
 #include "fesd_trajopt/core/butcher_tableau.h"
-#include "fesd_trajopt/core/dcs_model.h"
+#include "fesd_trajopt/core/dynamics_model.h"
+#include "fesd_trajopt/core/smooth_function.h"
 
 namespace fesd {
 
-/// An optimal control problem on a DCS:
+/// An optimal control problem on a nonsmooth system (a PDS as DcsModel, a Filippov system as
+/// StewartModel):
 ///   min  int_0^T L(x, u) dt + R(x(T))
-///   s.t. x(0) = x0, DCS dynamics, u piecewise constant on num_intervals equal intervals,
+///   s.t. x(0) = x0 (or x0_lower <= x(0) <= x0_upper), the system's dynamics, u piecewise constant
+///   on num_intervals equal intervals,
 ///        u_lower <= u <= u_upper, x_lower <= x <= x_upper, g_p(x, u) <= 0, g_t(x(T)) <= 0.
 /// Every function is optional; with none and fixed controls this is a simulation.
 struct OcpDefinition {
-  std::shared_ptr<const DcsModel> model;
+  std::shared_ptr<const DynamicsModel> model;
   Eigen::VectorXd initial_state;
+  /// A free start within these bounds (initial_state is then only the guess); empty: fixed.
+  /// Only Filippov models support it.
+  Eigen::VectorXd initial_state_lower, initial_state_upper;
   double horizon = 1.0;
   int num_intervals = 1;
   Eigen::VectorXd control_lower, control_upper;            ///< size n_u, or empty for unbounded
@@ -33,6 +39,11 @@ enum class CrossComplementarity {
   kElementSums,  ///< one product of sums per element and constraint (few, denser rows)
   kStagePairs,   ///< one product per pair of points (many, sparser rows)
 };
+
+/// Step equilibration of a Filippov system (seed 001, eq. 31): (h_n - h_{n-1}) eta_n = 0 with
+/// the switch indicator eta_n, or with tanh(eta_n) for a better scaling; or none (the steps
+/// are then free wherever nothing switches). A PDS always uses its own exact form.
+enum class StepEquilibration { kNone, kIndicator, kTanhIndicator };
 
 struct DiscretizationOptions {
   CollocationFamily family = CollocationFamily::kRadauIIA;
@@ -52,6 +63,14 @@ struct DiscretizationOptions {
   /// away from collapsed elements. At sigma -> 0 it vanishes and only the exact step
   /// equilibration remains. 0 switches it off.
   double step_regularization = 1.0;
+  StepEquilibration filippov_step_equilibration = StepEquilibration::kIndicator;
+  /// r of the relaxed step equilibration |((h_n - h_{n-1}) / h0) eta_n| <= r sigma of a
+  /// Filippov system. With r = 1 the relaxed NLPs of example (47) on coarse grids, whose
+  /// switch starts inside an element, could not move their steps and ended infeasible; with
+  /// r = 1e3 some simulation steps of OCP (61)'s controls that leave a sliding mode did. So
+  /// the relaxed NLPs are guided by the step regulariser above, like the PDS's big M, and
+  /// polishing imposes eq. 31 exactly (h_{n-1} = h_n wherever eta_n cannot vanish).
+  double filippov_equilibration_relaxation = 1e6;
 };
 
 }  // namespace fesd

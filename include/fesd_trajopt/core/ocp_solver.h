@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "fesd_trajopt/core/fesd_discretization.h"
+#include "fesd_trajopt/core/discretization.h"
 #include "fesd_trajopt/core/fesd_integrator.h"
 #include "fesd_trajopt/core/mpcc_solver.h"
 
@@ -43,9 +43,9 @@ struct OcpSolution {
   MpccReport report;  ///< homotopy history, iterations, times, objective, residual
 };
 
-/// Optimal control of a DCS with FESD: builds the discretisation once and solves it, from the
-/// trivial guess (every state at x0, controls 0 within their bounds) or from a previous
-/// solution of the same problem (a warm start).
+/// Optimal control of a nonsmooth system (any DynamicsModel) with FESD: builds the discretisation
+/// once and solves it, from the trivial guess (every state at x0, controls 0 within their bounds)
+/// or from a previous solution of the same problem (a warm start).
 class OcpSolver {
  public:
   OcpSolver(OcpDefinition ocp, OcpOptions options);
@@ -54,16 +54,16 @@ class OcpSolver {
   /// Warm start: `previous` must come from a solver with the same discretisation sizes.
   OcpSolution solve(const OcpSolution& previous);
 
-  const FesdDiscretization& discretization() const { return *discretization_; }
+  const Discretization& discretization() const { return *discretization_; }
   const OcpOptions& options() const { return options_; }
 
  private:
   /// The solution read from `report`, whose point belongs to `source`.
-  OcpSolution finish(MpccReport report, const FesdDiscretization& source) const;
+  OcpSolution finish(MpccReport report, const Discretization& source) const;
 
   OcpOptions options_;
-  std::unique_ptr<FesdDiscretization> discretization_;
-  std::unique_ptr<FesdDiscretization> fixed_grid_;  ///< the standard method on the same grid
+  std::unique_ptr<Discretization> discretization_;
+  std::unique_ptr<Discretization> fixed_grid_;  ///< the standard method on the same grid
   MpccSolver solver_, fixed_grid_solver_;
 };
 

@@ -1,0 +1,46 @@
+// sign-ocp: seed 001 Sec. 4.6, OCP (56) from forward simulations of several initial values as
+// guesses: the x0 found by FESD and the standard method, with a homotopy or a single relaxed
+// NLP at a fixed sigma (no polishing), against the analytic optimum.
+#include <cmath>
+#include <cstdio>
+
+#include "commands.h"
+#include "fesd_trajopt/core/filippov_examples.h"
+
+namespace fesd_bench {
+
+int signOcp(const Arguments& args) {
+  const std::vector<std::string> methods = args.texts("methods", {"fesd", "standard"});
+  const std::vector<std::string> strategies = args.texts("strategies", {"homotopy", "fixed"});
+  const double fixed_sigma = args.number("fixed-sigma", 1e-15);
+  const std::vector<std::string> guesses =
+      args.texts("guesses", {"-2.5", "-2", "-1.5", "-1", "-0.5", "0", "0.5", "1", "1.5", "2"});
+  args.rejectUnused();
+
+  namespace example = fesd::sign_example;
+  std::printf("method,strategy,guess,x0,x0_error,objective,status\n");
+  for (const std::string& guess_text : guesses) {
+    const double guess = std::stod(guess_text);
+    for (const std::string& method : methods) {
+      for (const std::string& strategy : strategies) {
+        fesd::HomotopyOptions homotopy;
+        if (strategy == "fixed") {
+          homotopy.sigma_initial = fixed_sigma;
+          homotopy.max_steps = 1;
+          homotopy.polish_active_set = false;
+        } else if (strategy != "homotopy") {
+          throw std::invalid_argument("--strategies takes homotopy and fixed");
+        }
+        const example::Result result = example::solve(guess, method == "fesd", homotopy);
+        std::printf("%s,%s,%g,%.8f,%.3e,%.8g,%s\n", method.c_str(), strategy.c_str(), guess,
+                    result.initial_state,
+                    std::fabs(result.initial_state - example::optimalInitialState()),
+                    result.objective, fesd::statusName(result.status).c_str());
+        std::fflush(stdout);
+      }
+    }
+  }
+  return 0;
+}
+
+}  // namespace fesd_bench

@@ -1,0 +1,56 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "fesd_trajopt/core/nlp_assembly.h"
+#include "fesd_trajopt/core/ocp_definition.h"
+#include "fesd_trajopt/core/trajectory.h"
+
+namespace fesd {
+
+/// A discretisation of an OcpDefinition as a relaxable MPCC, as the integrator and the OCP
+/// solver use it, whatever the model kind: the NLP, guesses, and reading the solution.
+class Discretization {
+ public:
+  virtual ~Discretization() = default;
+
+  virtual NlpAssembly& nlp() = 0;
+  virtual const NlpAssembly& nlp() const = 0;
+  /// True when element lengths are free (FESD on and something can switch).
+  virtual bool stepsAreFree() const = 0;
+
+  /// Fixes the start state.
+  virtual void setInitialState(const Eigen::VectorXd& x0) = 0;
+  /// Takes over what the next simulation step needs from the end of the previous one.
+  virtual void continueFrom(const Trajectory& previous) = 0;
+  /// Fixes the control of interval k to u (simulation).
+  virtual void fixControl(int interval, const Eigen::VectorXd& u) = 0;
+
+  /// Every state at the start state, nominal steps, the given controls (clipped to their
+  /// bounds; empty means 0), algebraic variables consistent with the start state.
+  virtual std::vector<double> constantGuess(
+      const std::vector<Eigen::VectorXd>& controls = {}) const = 0;
+  /// A previous, equally structured solution moved to the current start state.
+  virtual std::vector<double> translatedGuess(
+      const std::vector<double>& previous_solution) const = 0;
+  /// A solution of a discretisation of the same OCP on the same grid (e.g. the standard
+  /// method's) as a guess for this one.
+  virtual std::vector<double> adoptedGuess(const Discretization& other,
+                                           const std::vector<double>& solution) const = 0;
+
+  /// Reads the trajectory (times, states, stage values, controls, switches) from a solution.
+  virtual Trajectory extract(const double* x, double start_time = 0.0,
+                             double activity_tolerance = kDefaultActivityTolerance) const = 0;
+  /// Which complementarity pairs are active at a state (the classification of a trajectory's
+  /// start for detectSwitches).
+  virtual std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const = 0;
+};
+
+/// The discretisation of `ocp` that its model builds.
+std::unique_ptr<Discretization> discretize(const OcpDefinition& ocp,
+                                           const DiscretizationOptions& options);
+
+}  // namespace fesd

@@ -1,0 +1,219 @@
+// Stewart's reformulation of Filippov systems (seed 001, Sec. 2.2-2.3, 3): the sign-matrix
+// construction, the model functions' derivatives against finite differences, and the
+// structure and derivatives of its FESD / standard discretisations.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "fesd_trajopt/core/filippov_examples.h"
+#include "fesd_trajopt/core/stewart_discretization.h"
+#include "fesd_trajopt/core/stewart_model.h"
+#include "finite_differences.h"
+
+namespace {
+
+using fesd_test::checkAgainstFiniteDifferences;
+using fesd_test::randomVector;
+
+constexpr double kTolerance = 1e-6;
+
+TEST(SignMatrix, RowsAreAllSignPatternsInOrder) {
+  const Eigen::MatrixXd s = fesd::signMatrix(2);
+  Eigen::MatrixXd expected(4, 2);
+  expected << 1, 1, 1, -1, -1, 1, -1, -1;
+  EXPECT_EQ(s, expected);
+  EXPECT_THROW(fesd::signMatrix(0), std::invalid_argument);
+}
+
+/// Proposition 2: in the region with the signs of row i, g = -S c is smallest in component i.
+TEST(SignMatrix, IndicatorOfTheRegionIsTheSmallest) {
+  std::mt19937 random(2);
+  const Eigen::MatrixXd s = fesd::signMatrix(3);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Eigen::VectorXd c = randomVector(3, random);
+    const Eigen::VectorXd g = -s * c;
+    int region = 0;
+    for (int j = 0; j < 3; ++j) region = 2 * region + (c(j) < 0.0 ? 1 : 0);
+    Eigen::Index smallest;
+    g.minCoeff(&smallest);
+    EXPECT_EQ(smallest, region);
+  }
+}
+
+/// A nonlinear system with a user-given g: two subsystems with 3 and 2 modes, x in R^3, u in
+/// R^2, so that the velocity's Hessian mixes x, u and theta.
+struct NonlinearModes {
+  template <class T>
+  void operator()(const T* x, const T* u, T* F) const {
+    using std::cos;
+    using std::sin;
+    for (int i = 0; i < 5; ++i) {
+      F[3 * i] = sin(x[0] * (i + 1)) + u[0] * x[1];
+      F[3 * i + 1] = x[2] * x[2] * u[1] - 0.5 * i;
+      F[3 * i + 2] = cos(x[1]) * x[0] + u[0] * u[1] * i;
+    }
+  }
+};
+struct NonlinearIndicators {
+  template <class T>
+  void operator()(const T* x, T* g) const {
+    using std::exp;
+    g[0] = x[0] * x[1];
+    g[1] = exp(0.3 * x[2]) - x[0];
+    g[2] = x[1] * x[1] * x[2];
+    g[3] = x[0] + x[2] * x[2] * x[2];
+    g[4] = -x[1];
+  }
+};
+
+TEST(StewartModelFunctions, DerivativesAgainstFiniteDifferences) {
+  std::mt19937 random(9);
+  const auto user_g =
+      fesd::makeStewartModel(3, 2, {3, 2}, NonlinearModes{}, NonlinearIndicators{}, "nonlinear");
+  const auto switching = fesd::sliding_ocp_example::model();
+  for (const auto& model : {user_g, switching}) {
+    const int nz = model->velocity()->inputSize();
+    for (int trial = 0; trial < 10; ++trial) {
+      const Eigen::VectorXd z = randomVector(nz, random, -2.0, 2.0);
+      const auto velocity = checkAgainstFiniteDifferences(*model->velocity(), z,
+                                                          randomVector(model->stateSize(), random));
+      EXPECT_LT(velocity.jacobian, kTolerance) << model->name();
+      EXPECT_LT(velocity.hessian, kTolerance) << model->name();
+      const auto indicators =
+          checkAgainstFiniteDifferences(*model->indicators(), z.head(model->stateSize()),
+                                        randomVector(model->numModes(), random));
+      EXPECT_LT(indicators.jacobian, kTolerance) << model->name();
+      EXPECT_LT(indicators.hessian, kTolerance) << model->name();
+    }
+  }
+}
+
+/// OCP (61)'s model: v = sum_k F^k theta^k with qdot_k = v_k -/+ 1 in mode 0/1 of subsystem k,
+/// and g^k = (-phi_k, phi_k) from S = [1; -1].
+TEST(StewartModelFunctions, CartesianProductVelocityAndSignedIndicators) {
+  const auto model = fesd::sliding_ocp_example::model();
+  ASSERT_EQ(model->numSubsystems(), 2);
+  ASSERT_EQ(model->numModes(), 4);
+  EXPECT_EQ(model->subsystemOf(1), 0);
+  EXPECT_EQ(model->subsystemOf(2), 1);
+  std::mt19937 random(4);
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd x = randomVector(4, random, -2.0, 2.0);
+    const Eigen::VectorXd u = randomVector(2, random);
+    Eigen::VectorXd theta = randomVector(4, random, 0.0, 1.0);
+    theta.head(2) /= theta.head(2).sum();
+    theta.tail(2) /= theta.tail(2).sum();
+    Eigen::VectorXd z(10), v(4), g(4);
+    z << x, u, theta;
+    model->velocity()->evaluate(z.data(), v.data());
+    EXPECT_NEAR(v(0), x(2) - theta(0) + theta(1), 1e-14);
+    EXPECT_NEAR(v(1), x(3) - theta(2) + theta(3), 1e-14);
+    EXPECT_NEAR(v(2), u(0), 1e-14);
+    EXPECT_NEAR(v(3), u(1), 1e-14);
+    model->indicators()->evaluate(x.data(), g.data());
+    const double phi1 = x(0) + 0.15 * x(1) * x(1), phi2 = -0.05 * std::pow(x(0), 3) + x(1);
+    EXPECT_NEAR(g(0), -phi1, 1e-14);
+    EXPECT_NEAR(g(1), phi1, 1e-14);
+    EXPECT_NEAR(g(2), -phi2, 1e-14);
+    EXPECT_NEAR(g(3), phi2, 1e-14);
+    // The LP multipliers: mu^k = min g^k, lambda = g - mu^k e, zero at the active mode.
+    Eigen::VectorXd lambda(4), mu(2);
+    model->lpMultipliers(x.data(), lambda.data(), mu.data());
+    EXPECT_NEAR(mu(0), -std::fabs(phi1), 1e-14);
+    EXPECT_NEAR(mu(1), -std::fabs(phi2), 1e-14);
+    EXPECT_DOUBLE_EQ(lambda(phi1 > 0 ? 0 : 1), 0.0);
+    EXPECT_NEAR(lambda(phi1 > 0 ? 1 : 0), 2.0 * std::fabs(phi1), 1e-14);
+  }
+}
+
+/// OCP (61) on a short grid with an extra path constraint: every kind of NLP piece is present.
+fesd::OcpDefinition smallSlidingOcp() {
+  fesd::OcpDefinition ocp = fesd::sliding_ocp_example::ocp();
+  ocp.num_intervals = 2;
+  ocp.horizon = 1.0;
+  ocp.path_constraints = fesd::makeAutoDiffFunction(
+      6, 1, [](const auto* z, auto* g) { g[0] = z[0] * z[1] + z[4] * z[5] - 3.0; });
+  return ocp;
+}
+
+struct NlpCase {
+  fesd::CollocationFamily family;
+  int stages;
+  bool switch_detection;
+  fesd::CrossComplementarity cross;
+  fesd::StepEquilibration equilibration;
+};
+
+class StewartNlpDerivatives : public ::testing::TestWithParam<NlpCase> {};
+
+TEST_P(StewartNlpDerivatives, JacobianAndLagrangianHessianAgainstFiniteDifferences) {
+  fesd::DiscretizationOptions options;
+  options.family = GetParam().family;
+  options.num_stages = GetParam().stages;
+  options.num_elements = 3;
+  options.switch_detection = GetParam().switch_detection;
+  options.cross_complementarity = GetParam().cross;
+  options.filippov_step_equilibration = GetParam().equilibration;
+  fesd::StewartDiscretization discretization(smallSlidingOcp(), options);
+  const auto errors = fesd_test::checkRelaxedNlpAtRandomPoints(discretization.nlp(), 2, 17);
+  EXPECT_LT(errors.jacobian, kTolerance);
+  EXPECT_LT(errors.hessian, kTolerance);
+}
+
+using fesd::CollocationFamily;
+using fesd::CrossComplementarity;
+using fesd::StepEquilibration;
+INSTANTIATE_TEST_SUITE_P(
+    Formulations, StewartNlpDerivatives,
+    ::testing::Values(NlpCase{CollocationFamily::kRadauIIA, 2, true,
+                              CrossComplementarity::kElementSums, StepEquilibration::kIndicator},
+                      NlpCase{CollocationFamily::kRadauIIA, 1, true,
+                              CrossComplementarity::kStagePairs, StepEquilibration::kTanhIndicator},
+                      NlpCase{CollocationFamily::kGaussLegendre, 2, true,
+                              CrossComplementarity::kElementSums,
+                              StepEquilibration::kTanhIndicator},
+                      NlpCase{CollocationFamily::kGaussLegendre, 2, false,
+                              CrossComplementarity::kElementSums, StepEquilibration::kIndicator}));
+
+TEST(StewartNlpStructure, ComplementarityAndBoundaryPoints) {
+  fesd::DiscretizationOptions options;
+  options.num_stages = 2;
+  options.num_elements = 3;
+  const int elements = 6, stages = 2, modes = 4;
+  for (auto family : {CollocationFamily::kRadauIIA, CollocationFamily::kGaussLegendre}) {
+    options.family = family;
+    options.switch_detection = true;
+    fesd::StewartDiscretization fesd_method(smallSlidingOcp(), options);
+    options.switch_detection = false;
+    fesd::StewartDiscretization standard(smallSlidingOcp(), options);
+    // Standard: one pair per stage and mode; FESD: one product of sums per element and mode.
+    EXPECT_EQ(standard.nlp().numComplementarities(), elements * stages * modes);
+    EXPECT_EQ(fesd_method.nlp().numComplementarities(), elements * modes);
+    EXPECT_TRUE(fesd_method.stepsAreFree());
+    EXPECT_FALSE(standard.stepsAreFree());
+    // FESD adds its boundary points (n_f + n_sys each): the start's, and with c_ns != 1 one
+    // at every element's end; plus the equilibration's rows (relaxed and equal-steps) per
+    // inner boundary and the interval-length rows.
+    const int boundary_points = family == CollocationFamily::kRadauIIA ? 1 : elements + 1;
+    EXPECT_EQ(fesd_method.nlp().numVariables() - standard.nlp().numVariables(),
+              boundary_points * (modes + 2));
+    EXPECT_EQ(fesd_method.nlp().numConstraints() - standard.nlp().numConstraints(),
+              boundary_points * modes + 2 * 2 * 2 + 2 - (elements * stages - elements) * modes);
+  }
+}
+
+TEST(StewartNlpStructure, FreeInitialStateIsReleasedWithinItsBounds) {
+  fesd::OcpDefinition ocp = fesd::sign_example::ocp(0.5);
+  fesd::StewartDiscretization discretization(ocp, fesd::DiscretizationOptions{});
+  const int start = discretization.startStateIndex();
+  EXPECT_EQ(discretization.nlp().variableLower(start), -3.0);
+  EXPECT_EQ(discretization.nlp().variableUpper(start), 3.0);
+  discretization.setInitialState(Eigen::VectorXd::Constant(1, 0.25));
+  EXPECT_EQ(discretization.nlp().variableLower(start), 0.25);
+  EXPECT_EQ(discretization.nlp().variableUpper(start), 0.25);
+  discretization.releaseInitialState();
+  EXPECT_EQ(discretization.nlp().variableUpper(start), 3.0);
+}
+
+}  // namespace
