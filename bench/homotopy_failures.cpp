@@ -36,7 +36,7 @@ void printRun(const std::string& problem, const std::string& grid, bool continui
   std::fflush(stdout);
 }
 
-void simulateWith(const std::string& problem, std::shared_ptr<const fesd::DcsModel> model,
+void simulateWith(const std::string& problem, std::shared_ptr<const fesd::DynamicsModel> model,
                   const Eigen::VectorXd& x0, double horizon, int steps, int stages, int elements,
                   const std::vector<Eigen::VectorXd>& controls, const Eigen::VectorXd& exact) {
   for (bool continuing : {true, false}) {

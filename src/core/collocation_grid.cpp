@@ -187,7 +187,8 @@ Trajectory gridTrajectory(const double* x, const CollocationGrid& grid, const Oc
                           x[grid.steps[e]],
                           Eigen::MatrixXd(nx, ns),
                           Eigen::MatrixXd(num_pairs, ns),
-                          Eigen::MatrixXd(num_pairs, ns)};
+                          Eigen::MatrixXd(num_pairs, ns),
+                          Eigen::VectorXd()};
     for (int j = 0; j < ns; ++j) {
       element.stage_states.col(j) =
           Eigen::Map<const Eigen::VectorXd>(x + grid.stage_states[e][j], nx);
