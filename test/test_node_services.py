@@ -80,6 +80,24 @@ def random_request(rng):
     return request
 
 
+def random_simulate_request(rng):
+    """A Simulate request with random, often broken commands and sizes."""
+    nasty = [0.0, 1e300, float("inf"), float("nan")]
+    request = SimulateRequest(system=rng.choice(["", "", "circle_example", "pendulum"]))
+    request.urdf_param = "/three_disc_scene"
+    request.bodies = [body("pusher", role=rng.choice([0, 1, 2]))]
+    for _ in range(rng.randint(0, 2)):
+        controls = [Vector3(rng.choice([rng.uniform(-3, 3)] * 3 + nasty), rng.uniform(-3, 3), 0)
+                    for _ in range(rng.choice([0, 1, 2, 3]))]
+        request.commands.append(BodyTrajectory(name=rng.choice(["pusher", "puck", "x"]),
+                                               controls=controls))
+    request.has_horizon, request.horizon = rng.random() < 0.7, rng.choice([0.5, 1.0, -1.0, 1e9])
+    request.has_num_steps, request.num_steps = True, rng.choice([0, 1, 2, 3, 100000])
+    request.has_num_elements, request.num_elements = rng.random() < 0.5, rng.choice([0, 1, 2])
+    request.has_wall_time_budget, request.wall_time_budget = True, rng.choice([5.0, 0.0, 1e-3])
+    return request
+
+
 class NodeServices(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -237,6 +255,7 @@ class NodeServices(unittest.TestCase):
                              first.solution.statistics.ipopt_iterations)
 
     def test_random_broken_requests_all_get_a_status_and_a_message(self):
+        """Seeded random SolveTrajectory and Simulate requests, most of them broken."""
         rng = random.Random(6)
         statuses = {}
         for _ in range(150):
@@ -251,6 +270,16 @@ class NodeServices(unittest.TestCase):
             self.assertTrue(all(math.isfinite(v) for v in response.solution.states))
         self.assertGreater(statuses.get(INVALID_REQUEST, 0), 0)
         self.assertGreater(statuses.get(SUCCESS, 0), 0, statuses)
+        simulated = {}
+        for _ in range(60):
+            response = self.simulate(random_simulate_request(rng))
+            self.assertIn(response.status, range(7), response.message)
+            simulated[response.status] = simulated.get(response.status, 0) + 1
+            if response.status != SUCCESS:
+                self.assertGreater(len(response.message), 20)
+            self.assertTrue(all(math.isfinite(v) for v in response.solution.states))
+        self.assertGreater(simulated.get(SUCCESS, 0), 0, simulated)
+        self.assertGreater(simulated.get(INVALID_REQUEST, 0), 0, simulated)
         after = self.simulate(SimulateRequest(system="circle_example"))
         self.assertEqual(after.status, SUCCESS, after.message)
 

@@ -92,17 +92,29 @@ TEST(SolverRobustness, ProblemsThatFailEverywhereEndWithSolverErrorNotACrash) {
     FaultyCorner problem;
     problem.nlp.fault = fault;
     problem.nlp.fault_to = 1e9;
-    const fesd::MpccReport report = problem.solve();
+    fesd::HomotopyOptions options;
+    options.max_steps = 5;
+    const fesd::MpccReport report = problem.solve(options);
     EXPECT_EQ(report.status, fesd::SolveStatus::kSolverError) << report.message;
-    // Six failures in a row end the homotopy (HomotopyOptions::max_consecutive_failures).
-    EXPECT_EQ(report.history.size(), 6u);
-    EXPECT_EQ(report.failedSteps(), 6);
+    EXPECT_EQ(report.failedSteps(), 5);
     EXPECT_NE(report.message.find(fault == FaultyAssembly::Fault::kThrowInSetup
                                       ? "non_ipopt_exception"
                                       : "invalid_number_detected"),
               std::string::npos)
         << report.message;
     EXPECT_EQ(report.solution, (std::vector<double>{1.0, 0.5}));  // the guess, untouched
+  }
+}
+
+TEST(SolverRobustness, InfeasibleRelaxationsInARowEndTheHomotopy) {
+  fesd_test::CornerMpcc<> problem;
+  const int row = problem.nlp.addRows(1, -fesd::NlpAssembly::kInfinity, -1.0);  // x + y <= -1
+  problem.nlp.addLinear(row, {{problem.x, 1.0}, {problem.y, 1.0}});
+  const fesd::MpccReport report = problem.solve();
+  EXPECT_EQ(report.status, fesd::SolveStatus::kInfeasible) << report.message;
+  EXPECT_EQ(report.history.size(), 3u);  // HomotopyOptions::max_consecutive_infeasible
+  for (const fesd::HomotopyStep& step : report.history) {
+    EXPECT_EQ(step.ipopt_status, "infeasible_problem_detected");
   }
 }
 

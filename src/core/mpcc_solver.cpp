@@ -226,7 +226,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
   PrimalDualPoint best;
   double best_residual = std::numeric_limits<double>::infinity(), best_sigma = sigma,
          best_objective = 0.0;
-  int consecutive_failures = 0;
+  int consecutive_infeasible = 0;
   for (int step = 0; step < steps; ++step) {
     problem.setRelaxation(sigma);
     settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma;
@@ -260,9 +260,10 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     }
     report.status = converged ? SolveStatus::kComplementarityNotMet : failureStatus(outcome.status);
     if (report.status == SolveStatus::kTimeout) break;
-    consecutive_failures = converged ? 0 : consecutive_failures + 1;
+    consecutive_infeasible =
+        report.status == SolveStatus::kInfeasible ? consecutive_infeasible + 1 : 0;
     if (!converged && (!options_.continue_after_failure ||
-                       consecutive_failures >= options_.max_consecutive_failures)) {
+                       consecutive_infeasible >= options_.max_consecutive_infeasible)) {
       break;
     }
     sigma *= options_.sigma_reduction;
