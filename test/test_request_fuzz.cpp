@@ -48,7 +48,8 @@ class Fuzzer {
   /// Anything at all: most of these are invalid, which is the point.
   fesd::SceneTask garbageTask() {
     const int dim = chance(0.9) ? integer(2, 3) : integer(0, 4);
-    fesd::SceneTask task{fesd::DiscScene(dim)};
+    fesd::SceneTask task;
+    task.scene = fesd::DiscScene(dim);
     const int bodies = chance(0.95) ? integer(0, 5) : 31;
     for (int b = 0; b < bodies; ++b) {
       task.scene.bodies().push_back({"b" + std::to_string(integer(0, bodies)), number(0.1, 1.0),
@@ -84,7 +85,8 @@ class Fuzzer {
   /// A valid task: bodies on a grid 3 apart (radii <= 1), one actuated, bounds around starts.
   fesd::SceneTask validTask() {
     const int dim = integer(2, 3);
-    fesd::SceneTask task{fesd::DiscScene(dim)};
+    fesd::SceneTask task;
+    task.scene = fesd::DiscScene(dim);
     const int bodies = integer(1, 6);
     for (int b = 0; b < bodies; ++b) {
       Eigen::VectorXd p = Eigen::VectorXd::Zero(dim);
@@ -238,7 +240,9 @@ TEST(RequestFuzz, EveryDefectOfAValidTaskIsRefusedByName) {
   for (int i = 0; i < 2000; ++i) {
     fesd::SceneTask task = fuzzer.validTask();
     ASSERT_EQ(fesd::validateTask(task, fesd::TaskLimits{}), "") << "case " << i;
-    if (i % 10 == 0) ASSERT_NO_FATAL_FAILURE(buildAndEvaluate(task)) << "case " << i;
+    if (i % 10 == 0) {
+      ASSERT_NO_FATAL_FAILURE(buildAndEvaluate(task)) << "case " << i;
+    }
     const Defect& defect = kDefects[fuzzer.integer(0, std::size(kDefects) - 1)];
     defect.apply(task, fuzzer);
     const std::string message = fesd::validateTask(task, fesd::TaskLimits{});
@@ -282,7 +286,8 @@ TEST(RequestFuzz, MutatedUrdfNeverCrashesTheSceneReader) {
     if (!scene.error.empty()) continue;
     ++readable;
     // What the reader accepts, validation judges: a message or a task that builds.
-    fesd::SceneTask task{scene.scene};
+    fesd::SceneTask task;
+    task.scene = scene.scene;
     task.bodies.resize(scene.scene.bodies().size());
     if (!task.scene.bodies().empty()) task.scene.bodies()[0].actuated = true;
     task.num_intervals = 2;

@@ -148,7 +148,9 @@ TEST(SceneTask, PassiveBodiesMoveOnlyWhenSomethingThatMovesCanReachThem) {
     if (task.scene.pairName(d.pair) != "puck/marble") task.allowed_pairs.push_back(d.pair);
   }
   for (const fesd::PairDecision& d : fesd::decidePairs(task)) {
-    if (task.scene.pairName(d.pair) == "marble/pebble") EXPECT_FALSE(d.modelled);
+    if (task.scene.pairName(d.pair) == "marble/pebble") {
+      EXPECT_FALSE(d.modelled);
+    }
   }
 }
 
