@@ -26,14 +26,16 @@ int signOcp(const Arguments& args) {
     const double guess = std::stod(guess_text);
     for (const std::string& method : methods) {
       for (const std::string& strategy : strategies) {
-        example::Result result;
+        double x0, objective;
+        fesd::SolveStatus status;
         if (strategy == "ocp-solver") {
           fesd::OcpOptions options;
           options.discretization = example::discretization(method == "fesd");
           fesd::OcpSolver solver(example::ocp(guess), options);
           const fesd::OcpSolution solution = solver.solve();
-          result = {fesd::SolveStatus::kSuccess, solution.status,
-                    solution.trajectory.states.front()(0), solution.report.objective};
+          x0 = solution.trajectory.states.front()(0);
+          objective = solution.report.objective;
+          status = solution.status;
         } else {
           fesd::HomotopyOptions homotopy;
           if (strategy == "fixed") {
@@ -43,12 +45,14 @@ int signOcp(const Arguments& args) {
           } else if (strategy != "homotopy") {
             throw std::invalid_argument("--strategies takes homotopy, fixed and ocp-solver");
           }
-          result = example::solve(guess, method == "fesd", homotopy);
+          const example::Result result = example::solve(guess, method == "fesd", homotopy);
+          x0 = result.initial_state;
+          objective = result.objective;
+          status = result.status;
         }
-        std::printf("%s,%s,%g,%.8f,%.3e,%.8g,%s\n", method.c_str(), strategy.c_str(), guess,
-                    result.initial_state,
-                    std::fabs(result.initial_state - example::optimalInitialState()),
-                    result.objective, fesd::statusName(result.status).c_str());
+        std::printf("%s,%s,%g,%.8f,%.3e,%.8g,%s\n", method.c_str(), strategy.c_str(), guess, x0,
+                    std::fabs(x0 - example::optimalInitialState()), objective,
+                    fesd::statusName(status).c_str());
         std::fflush(stdout);
       }
     }
