@@ -60,8 +60,9 @@ const std::map<std::string, Command>& commands() {
       {"sign-ocp",
        {fesd_bench::signOcp,
         "OCP (56) (seed 001): x0 found from forward-simulation guesses, FESD vs standard, with a\n"
-        "    homotopy or one relaxed NLP at a fixed sigma, CSV. --methods=fesd,standard\n"
-        "    --strategies=homotopy,fixed --fixed-sigma=1e-15 --guesses=-2.5,-2,...,2"}},
+        "    homotopy or one relaxed NLP at a fixed sigma, or by OcpSolver from constant guesses,\n"
+        "    CSV. --methods=fesd,standard --strategies=homotopy,fixed,ocp-solver\n"
+        "    --fixed-sigma=1e-15 --guesses=-2.5,-2,...,2"}},
       {"order-pds",
        {fesd_bench::orderPds,
         "Example 1 (seed 000): terminal error vs step for FESD and standard, Radau-IIA.\n"

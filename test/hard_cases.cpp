@@ -133,6 +133,10 @@ CheckedRun simulateTwice(std::shared_ptr<const fesd::DcsModel> model,
            << residual_bound;
   }
   if (!allFinite(r.trajectory)) return ::testing::AssertionFailure() << "NaN or Inf in the result";
+  if (!r.trajectory.switchesResolved()) {
+    return ::testing::AssertionFailure()
+           << fesd::describeUnresolvedSwitches(r.trajectory.unresolved_switches);
+  }
   if (!run.identical) return ::testing::AssertionFailure() << "two runs differ";
   recordNumber("complementarity_residual", r.totals.complementarity_residual);
   return ::testing::AssertionSuccess();

@@ -65,8 +65,8 @@ CheckedRun simulateTwice(std::shared_ptr<const fesd::DcsModel> model,
                          double horizon, int steps,
                          const std::vector<Eigen::VectorXd>& controls = {});
 
-/// Status kSuccess, complementarity residual <= `residual_bound`, every value finite, and both
-/// runs identical. Records the residual.
+/// Status kSuccess, complementarity residual <= `residual_bound`, every value finite, every
+/// switch resolved by the grid, and both runs identical. Records the residual.
 ::testing::AssertionResult isHealthy(const CheckedRun& run, double residual_bound);
 
 /// Records a number for the test report (XML output) with three significant digits.

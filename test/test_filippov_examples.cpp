@@ -100,6 +100,23 @@ TEST(SignOcp, FesdFindsTheAnalyticOptimumFromSeveralGuesses) {
   }
 }
 
+/// With OcpSolver's two-stage homotopy (the standard method's grid until sigma = 1e-2, then
+/// FESD) the optimum is found from constant guesses on either side of the switch too, where
+/// the forward-simulation guesses of x0 >= 0 (no switch) leave pure FESD at another
+/// stationary point.
+TEST(SignOcp, OcpSolverFindsTheAnalyticOptimumFromGuessesOnEitherSide) {
+  namespace example = fesd::sign_example;
+  fesd::OcpOptions options;
+  options.discretization = example::discretization(true);
+  for (double guess : {-2.5, 0.5, 2.0}) {
+    fesd::OcpSolver solver(example::ocp(guess), options);
+    const fesd::OcpSolution solution = solver.solve();
+    EXPECT_EQ(solution.status, fesd::SolveStatus::kSuccess) << guess;
+    EXPECT_NEAR(solution.trajectory.states.front()(0), example::optimalInitialState(), 1e-6)
+        << guess;
+  }
+}
+
 /// Subsystems sliding in an element: both of their modes active (theta outweighs lambda).
 std::set<int> slidingSubsystems(const fesd::ElementValues& element) {
   std::set<int> sliding;

@@ -98,13 +98,17 @@ OcpDefinition ocp(double x0_guess) {
   return ocp;
 }
 
-Result solve(double x0_guess, bool fesd, const HomotopyOptions& homotopy) {
+DiscretizationOptions discretization(bool fesd) {
   DiscretizationOptions options;
   options.family = CollocationFamily::kGaussLegendre;
   options.num_stages = 2;
   options.num_elements = 25;
   options.switch_detection = fesd;
-  StewartDiscretization discretization(ocp(x0_guess), options);
+  return options;
+}
+
+Result solve(double x0_guess, bool fesd, const HomotopyOptions& homotopy) {
+  StewartDiscretization discretization(ocp(x0_guess), sign_example::discretization(fesd));
   discretization.setInitialState(Eigen::VectorXd::Constant(1, x0_guess));
   MpccSolver simulation_solver;
   const MpccReport guess =

@@ -28,6 +28,8 @@ std::shared_ptr<const StewartModel> model();
 double optimalInitialState();
 /// The OCP with a free start in [-3, 3], x0_guess as its guess.
 OcpDefinition ocp(double x0_guess);
+/// The grid of the paper's experiment: Gauss-Legendre, n_s = 2, 25 elements.
+DiscretizationOptions discretization(bool fesd);
 
 struct Result {
   SolveStatus guess_status;  ///< the forward simulation that gives the guess
@@ -36,8 +38,8 @@ struct Result {
   double objective;
 };
 /// The experiment of seed 001 Sec. 4.6: a forward simulation from x0_guess with the same
-/// method and grid (Gauss-Legendre, n_s = 2, 25 elements) is the guess; the OCP is then solved
-/// with the given homotopy (e.g. a single relaxed NLP at a fixed sigma).
+/// method and grid is the guess; the OCP is then solved with the given homotopy (e.g. a single
+/// relaxed NLP at a fixed sigma).
 Result solve(double x0_guess, bool fesd, const HomotopyOptions& homotopy);
 }  // namespace sign_example
 
