@@ -79,8 +79,8 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
   result.trajectory.switches = detectSwitches(
       result.trajectory.elements, discretization.activeAt(x0, options_.activity_tolerance),
       options_.activity_tolerance);
-  result.trajectory.unresolved_switches =
-      findUnresolvedSwitches(result.trajectory.elements, options_.activity_tolerance);
+  result.trajectory.unresolved_switches = findUnresolvedSwitches(
+      result.trajectory.elements, options_.activity_tolerance, options_.penetration_tolerance);
   if (result.status == SolveStatus::kSuccess) {
     std::ostringstream message;
     message << "simulated " << num_steps << " step(s): " << result.totals.iterations

@@ -35,6 +35,11 @@ struct SimulationOptions {
   /// no tighter relaxation is feasible.
   HomotopyOptions retry_homotopy = retryHomotopy();
   double activity_tolerance = kDefaultActivityTolerance;
+  /// Depth, in state units, beyond which an element's collocation polynomial counts as passing
+  /// through a constraint (findUnresolvedSwitches). The default suits lengths of order one; a
+  /// resolved slide along a curve bends off it in proportion to the scene's size, so scale it
+  /// with the lengths of the scene (measured: R = 1e3 flags a resolved slide at the default).
+  double penetration_tolerance = kDefaultPenetrationTolerance;
   /// Seconds for the whole simulation: each step's homotopy gets what is left; a step that runs
   /// out ends the simulation with kTimeout (the steps before it are kept).
   double wall_time_budget = std::numeric_limits<double>::infinity();
