@@ -2,7 +2,8 @@
 """Plots the benchmark CSVs of docs/benchmarks/ into PNGs beside them (matplotlib, Agg).
 
 Usage: plot_benchmarks.py [directory]. Reads what exists of order_pds.csv, siconos_example1.csv,
-ocp_accuracy.csv and scaling.csv; a missing file skips its plots.
+ocp_accuracy.csv, scaling.csv, order_filippov.csv and ocp_filippov.csv; a missing file skips its
+plots.
 """
 import csv
 import os
@@ -14,9 +15,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fit_orders import fitted_orders  # noqa: E402
+from fit_orders import family, fitted_orders  # noqa: E402
 
 STAGE_COLORS = {1: "tab:blue", 2: "tab:orange", 3: "tab:green", 4: "tab:red"}
+# Implicit Euler damps example (47)'s spiral on coarse grids: its order is fitted from 256 on.
+FILIPPOV_ASYMPTOTIC_FROM = {("radau_iia", 1): 256}
 
 
 def read(directory, name):
@@ -48,19 +51,26 @@ def save(figure, directory, name):
     print("plot_benchmarks: wrote " + path)
 
 
-def plot_example1(directory, order_rows, peer_rows):
-    rows = ok(order_rows)
-    orders = fitted_orders(order_rows)
-    figure, axes = plt.subplots(1, 2, figsize=(12, 5))
-    for (method, n_s), group in sorted(series(rows, lambda r: (r["method"], int(r["n_s"]))).items()):
+def plot_orders(axes, order_rows, from_total=None):
+    """Error vs h on axes[0] and, if given, error vs CPU time on axes[1], per method and scheme."""
+    orders = fitted_orders(order_rows, from_total=from_total)
+    key = lambda r: (r["method"], family(r["scheme"]), int(r["n_s"]))  # noqa: E731
+    for (method, scheme, n_s), group in sorted(series(ok(order_rows), key).items()):
         group.sort(key=lambda r: float(r["h"]))
-        style = "-o" if method == "fesd" else "--s"
-        label = "%s n_s=%d (order %.2f)" % (method, n_s, orders[(method, n_s)][0])
+        style = ("-" if method == "fesd" else "--") + ("o" if scheme == "radau_iia" else "^")
+        name = "%s %s n_s=%d" % (method, scheme, n_s)
         color = STAGE_COLORS.get(n_s)
         axes[0].loglog([float(r["h"]) for r in group], [float(r["error"]) for r in group], style,
-                       color=color, label=label, markersize=4)
-        axes[1].loglog([float(r["cpu_s"]) for r in group], [float(r["error"]) for r in group],
-                       style, color=color, label="%s n_s=%d" % (method, n_s), markersize=4)
+                       color=color, markersize=4,
+                       label="%s (order %.2f)" % (name, orders[(method, scheme, n_s)][0]))
+        if len(axes) > 1:
+            axes[1].loglog([float(r["cpu_s"]) for r in group], [float(r["error"]) for r in group],
+                           style, color=color, label=name, markersize=4)
+
+
+def plot_example1(directory, order_rows, peer_rows):
+    figure, axes = plt.subplots(1, 2, figsize=(12, 5))
+    plot_orders(axes, order_rows)
     for method, group in sorted(series(ok(peer_rows), lambda r: r["method"]).items()):
         group.sort(key=lambda r: float(r["cpu_s"]))
         axes[1].loglog([float(r["cpu_s"]) for r in group], [float(r["error"]) for r in group],
@@ -76,8 +86,8 @@ def plot_example1(directory, order_rows, peer_rows):
     save(figure, directory, "example1_work_precision.png")
 
 
-def plot_ocp_accuracy(directory, rows):
-    figure, axis = plt.subplots(figsize=(7, 5))
+def plot_work_precision(axis, rows):
+    """Terminal error vs CPU time of OCP solves, per method and n_s."""
     solved = [r for r in rows if r["status"] == "success"]
     for (method, n_s), group in sorted(series(solved,
                                               lambda r: (r["method"], int(r["n_s"]))).items()):
@@ -88,12 +98,31 @@ def plot_ocp_accuracy(directory, rows):
                     label="%s n_s=%d (N_FE=%s)" % (method, n_s,
                                                    ",".join(r["n_fe"] for r in group)),
                     markersize=4)
-    axis.set(xlabel="CPU time of the OCP solve [s]",
-             ylabel="terminal error vs a fine re-simulation",
-             title="Manipulation showcase (N_ctrl = %s)" % (rows[0]["intervals"] if rows else "?"))
+    axis.set(xlabel="CPU time of the OCP solve [s]")
     axis.grid(True, which="both", alpha=0.3)
     axis.legend(fontsize=7)
+
+
+def plot_ocp_accuracy(directory, rows):
+    figure, axis = plt.subplots(figsize=(7, 5))
+    plot_work_precision(axis, rows)
+    axis.set(ylabel="terminal error vs a fine re-simulation",
+             title="Manipulation showcase (N_ctrl = %s)" % (rows[0]["intervals"] if rows else "?"))
     save(figure, directory, "ocp_work_precision.png")
+
+
+def plot_filippov(directory, order_rows, ocp_rows):
+    figure, axes = plt.subplots(1, 2, figsize=(12, 5))
+    if order_rows:
+        plot_orders(axes[:1], order_rows, FILIPPOV_ASYMPTOTIC_FROM)
+        axes[0].set(xlabel="h", ylabel="terminal error", title="Example (47): error vs step")
+        axes[0].grid(True, which="both", alpha=0.3)
+        axes[0].legend(fontsize=6)
+    if ocp_rows:
+        plot_work_precision(axes[1], ocp_rows)
+        axes[1].set(ylabel="|x_int(T) - x_final| (fine re-simulation)",
+                    title="OCP (61): terminal error vs CPU time (N_ctrl = 6)")
+    save(figure, directory, "filippov_work_precision.png")
 
 
 def plot_scaling(directory, rows):
@@ -126,6 +155,10 @@ def main():
     scaling_rows = read(directory, "scaling.csv")
     if scaling_rows:
         plot_scaling(directory, scaling_rows)
+    filippov_orders = read(directory, "order_filippov.csv")
+    filippov_ocp = read(directory, "ocp_filippov.csv")
+    if filippov_orders or filippov_ocp:
+        plot_filippov(directory, filippov_orders, filippov_ocp)
     return 0
 
 

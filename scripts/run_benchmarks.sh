@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates every benchmark table and plot in docs/benchmarks/ (CSV + PNG): installs what is
 # missing, builds (Release), runs the sweeps, plots. Takes about an hour on a 2-core machine.
-# scripts/run_benchmarks.sh [order|siconos|ocp|scaling ...] (default: all of them)
+# scripts/run_benchmarks.sh [order|siconos|ocp|scaling|filippov ...] (default: all of them)
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 install_dependencies
 build_workspace
@@ -9,7 +9,7 @@ source_workspace
 OUT="$REPO_DIR/docs/benchmarks"
 mkdir -p "$OUT"
 PARTS=("$@")
-((${#PARTS[@]})) || PARTS=(order siconos ocp scaling)
+((${#PARTS[@]})) || PARTS=(order siconos ocp scaling filippov)
 for part in "${PARTS[@]}"; do
   echo "== $part"
   case "$part" in
@@ -26,7 +26,17 @@ for part in "${PARTS[@]}"; do
       ;;
     ocp) rosrun fesd_trajopt fesd_bench ocp-accuracy --budget=60 >"$OUT/ocp_accuracy.csv" ;;
     scaling) rosrun fesd_trajopt fesd_bench scaling --budget=60 >"$OUT/scaling.csv" ;;
-    *) echo "unknown part '$part' (order, siconos, ocp, scaling)" >&2; exit 2 ;;
+    filippov)
+      # Implicit Euler damps example (47)'s spiral on coarse grids: it gets finer ones too.
+      rosrun fesd_trajopt fesd_bench order-filippov >"$OUT/order_filippov.csv"
+      rosrun fesd_trajopt fesd_bench order-filippov --radau-stages=1 --gauss-stages= \
+        --totals=256,512,1024 --elements=32 | tail -n +2 >>"$OUT/order_filippov.csv"
+      "$ROS_PYTHON" "$REPO_DIR/scripts/fit_orders.py" "$OUT/order_filippov.csv" \
+        --from-total radau_iia:1=256 >"$OUT/orders_filippov.csv"
+      rosrun fesd_trajopt fesd_bench ocp-filippov >"$OUT/ocp_filippov.csv"
+      rosrun fesd_trajopt fesd_bench sign-ocp >"$OUT/sign_ocp.csv"
+      ;;
+    *) echo "unknown part '$part' (order, siconos, ocp, scaling, filippov)" >&2; exit 2 ;;
   esac
 done
 "$ROS_PYTHON" "$REPO_DIR/scripts/plot_benchmarks.py" "$OUT"
