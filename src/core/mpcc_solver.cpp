@@ -152,6 +152,12 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
   }
 }
 
+/// A polished point is a solution only if its complementarity holds to the tolerance (fixing a
+/// side that holds data can leave a pair violated).
+bool polishedToTolerance(const MpccReport& report, const HomotopyOptions& options) {
+  return report.polished && report.complementarity_residual <= options.complementarity_tolerance;
+}
+
 }  // namespace
 
 MpccSolver::MpccSolver(HomotopyOptions options)
@@ -191,7 +197,7 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
     settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma_initial;
     settings.tolerance = options_.ipopt.tolerance;
     polish(*session_, options_, problem, point, settings, report);
-    if (report.polished) {
+    if (polishedToTolerance(report, options_)) {
       report.status = SolveStatus::kSuccess;
       report.message = "success: polished from the previous solution's active set, " +
                        std::to_string(report.iterations) + " Ipopt iterations";
@@ -296,7 +302,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
       settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * best_sigma;
       report.complementarity_residual = best_residual;
       polish(*session_, options_, problem, best, settings, report);
-      if (report.polished) report.status = SolveStatus::kSuccess;
+      if (polishedToTolerance(report, options_)) report.status = SolveStatus::kSuccess;
     }
   }
   report.message = describe(report, options_.complementarity_tolerance);
