@@ -38,6 +38,24 @@ TEST(MpccSolver, SmoothProblemIsSolvedOnceWithoutHomotopy) {
   EXPECT_NEAR(report.solution[1], -4.0, 1e-8);
 }
 
+TEST(MpccSolver, WarmStartFromAProblemWithOtherRowsDropsItsMultipliers) {
+  CornerMpcc previous;
+  const fesd::MpccReport solved = previous.solve();
+  ASSERT_EQ(solved.status, fesd::SolveStatus::kSuccess) << solved.message;
+  // The same variables and one more row (x + y <= 3, inactive): the old constraint
+  // multipliers do not fit, so the warm start (and its polishing) goes without them.
+  CornerMpcc extended;
+  const int row = extended.nlp.addRows(1, -fesd::NlpAssembly::kInfinity, 3.0);
+  extended.nlp.addLinear(row, {{extended.x, 1.0}, {extended.y, 1.0}});
+  extended.nlp.finalize();
+  fesd::MpccSolver solver;
+  const fesd::MpccReport report = solver.solve(extended.nlp, solved, 1e-4);
+  ASSERT_EQ(report.status, fesd::SolveStatus::kSuccess) << report.message;
+  EXPECT_NEAR(report.solution[extended.x], 1.0, 1e-8);
+  EXPECT_NEAR(report.solution[extended.y], 0.0, 1e-8);
+  EXPECT_LE(report.complementarity_residual, 1e-9);
+}
+
 TEST(MpccSolver, ReportsInfeasibility) {
   CornerMpcc problem;
   const int row = problem.nlp.addRows(1, -fesd::NlpAssembly::kInfinity, -1.0);  // x + y <= -1

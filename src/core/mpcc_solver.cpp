@@ -129,7 +129,9 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
     if (!problem.fixActiveSet(converged.x.data(), attempt - 1)) return;
     PrimalDualPoint point = converged;
     // The dropped product rows are inactive from now on: their multipliers are zero.
-    for (int row : problem.complementarityRows()) point.constraint_multipliers[row] = 0.0;
+    if (point.has_multipliers) {
+      for (int row : problem.complementarityRows()) point.constraint_multipliers[row] = 0.0;
+    }
     const NlpOutcome outcome = session.solve(problem, point, settings);
     problem.releaseActiveSet();
     const double residual = problem.complementarityResidual(point.x.data());
