@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates every benchmark table and plot in docs/benchmarks/ (CSV + PNG): installs what is
-# missing, builds (Release), runs the sweeps, plots. Takes about an hour on a 2-core machine.
+# missing, builds (Release), runs the sweeps, plots. Took 30 min on the 2-core machine (docs/benchmarks/README.md).
 # scripts/run_benchmarks.sh [order|siconos|ocp|scaling|filippov ...] (default: all of them)
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 install_dependencies
