@@ -44,21 +44,22 @@ std_msgs::ColorRGBA color(double r, double g, double b, double a) {
 }  // namespace
 
 uint8_t statusCode(fesd::SolveStatus status) {
+  using Codes = fesd_trajopt::SolveTrajectory::Response;
   switch (status) {
     case fesd::SolveStatus::kSuccess:
-      return 0;
+      return Codes::SUCCESS;
     case fesd::SolveStatus::kMaxIterations:
-      return 1;
+      return Codes::MAX_ITERATIONS;
     case fesd::SolveStatus::kInfeasible:
-      return 2;
+      return Codes::INFEASIBLE;
     case fesd::SolveStatus::kTimeout:
-      return 3;
+      return Codes::TIMEOUT;
     case fesd::SolveStatus::kComplementarityNotMet:
-      return 4;
+      return Codes::COMPLEMENTARITY_NOT_MET;
     case fesd::SolveStatus::kSolverError:
-      return 5;
+      return Codes::SOLVER_ERROR;
   }
-  return 5;
+  return Codes::SOLVER_ERROR;
 }
 
 void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& report,

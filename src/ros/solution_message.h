@@ -1,6 +1,7 @@
 #pragma once
 
 #include <fesd_trajopt/Solution.h>
+#include <fesd_trajopt/SolveTrajectory.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include "fesd_trajopt/core/mpcc_solver.h"
@@ -9,9 +10,9 @@
 
 namespace fesd_ros {
 
-/// Status constants shared by both services (SolveTrajectory/Simulate responses).
+/// The status constant of a solver outcome (Simulate.srv repeats SolveTrajectory.srv's).
 uint8_t statusCode(fesd::SolveStatus status);
-constexpr uint8_t kInvalidRequest = 6;
+constexpr uint8_t kInvalidRequest = fesd_trajopt::SolveTrajectory::Response::INVALID_REQUEST;
 
 /// The Solution message of a scene trajectory: times, each body's positions and controls, the
 /// full state, switches (named by the modelled pairs), statistics and pair decisions.
