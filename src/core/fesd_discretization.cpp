@@ -425,7 +425,8 @@ void FesdDiscretization::completeAuxiliaries(std::vector<double>& x) const {
 }
 
 Trajectory FesdDiscretization::extract(const double* x, double start_time,
-                                       double activity_tolerance) const {
+                                       double activity_tolerance,
+                                       double penetration_tolerance) const {
   Trajectory trajectory = gridTrajectory(x, grid_, ocp_, start_.x, nc_, start_time);
   for (int e = 0; e < numElements(); ++e) {
     ElementValues& element = trajectory.elements[e];
@@ -441,8 +442,7 @@ Trajectory FesdDiscretization::extract(const double* x, double start_time,
   }
   std::vector<bool> initially_active(nc_);
   for (int k = 0; k < nc_; ++k) initially_active[k] = x[start_.s + k] <= activity_tolerance;
-  trajectory.switches = detectSwitches(trajectory.elements, initially_active, activity_tolerance);
-  trajectory.unresolved_switches = findUnresolvedSwitches(trajectory.elements, activity_tolerance);
+  classifySwitches(trajectory, initially_active, activity_tolerance, penetration_tolerance);
   return trajectory;
 }
 

@@ -64,8 +64,9 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
     previous_solution = report.solution;
     result.totals.accumulate(report);
     result.step_histories.push_back(report.history);
-    Trajectory piece = discretization.extract(report.solution.data(), step * step_problem.horizon,
-                                              options_.activity_tolerance);
+    Trajectory piece =
+        discretization.extract(report.solution.data(), step * step_problem.horizon,
+                               options_.activity_tolerance, options_.penetration_tolerance);
     result.trajectory.append(piece);
     state = piece.finalState();
     if (!report.converged()) {
@@ -76,11 +77,8 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
     }
     ++result.completed_steps;
   }
-  result.trajectory.switches = detectSwitches(
-      result.trajectory.elements, discretization.activeAt(x0, options_.activity_tolerance),
-      options_.activity_tolerance);
-  result.trajectory.unresolved_switches = findUnresolvedSwitches(
-      result.trajectory.elements, options_.activity_tolerance, options_.penetration_tolerance);
+  classifySwitches(result.trajectory, discretization.activeAt(x0, options_.activity_tolerance),
+                   options_.activity_tolerance, options_.penetration_tolerance);
   if (result.status == SolveStatus::kSuccess) {
     std::ostringstream message;
     message << "simulated " << num_steps << " step(s): " << result.totals.iterations

@@ -73,8 +73,8 @@ OcpSolution OcpSolver::finish(MpccReport report, const Discretization& source) c
   OcpSolution solution;
   solution.report = std::move(report);
   solution.status = solution.report.status;
-  solution.trajectory =
-      source.extract(solution.report.solution.data(), 0.0, options_.activity_tolerance);
+  solution.trajectory = source.extract(solution.report.solution.data(), 0.0,
+                                       options_.activity_tolerance, options_.penetration_tolerance);
   solution.message = resultMessage(solution.report, solution.trajectory);
   return solution;
 }

@@ -396,7 +396,8 @@ std::vector<double> StewartDiscretization::adoptedGuess(const Discretization& ot
 }
 
 Trajectory StewartDiscretization::extract(const double* x, double start_time,
-                                          double activity_tolerance) const {
+                                          double activity_tolerance,
+                                          double penetration_tolerance) const {
   Trajectory trajectory = gridTrajectory(x, grid_, ocp_, start_state_, nf_, start_time);
   for (int e = 0; e < numElements(); ++e) {
     ElementValues& values = trajectory.elements[e];
@@ -406,9 +407,8 @@ Trajectory StewartDiscretization::extract(const double* x, double start_time,
       values.stage_constraints.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.lambda, nf_);
     }
   }
-  trajectory.switches =
-      detectSwitches(trajectory.elements, activeAt(trajectory.states.front(), activity_tolerance),
-                     activity_tolerance);
+  classifySwitches(trajectory, activeAt(trajectory.states.front(), activity_tolerance),
+                   activity_tolerance, penetration_tolerance);
   return trajectory;
 }
 

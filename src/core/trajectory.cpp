@@ -113,6 +113,13 @@ std::vector<UnresolvedSwitch> findUnresolvedSwitches(const std::vector<ElementVa
   return unresolved;
 }
 
+void classifySwitches(Trajectory& trajectory, const std::vector<bool>& initially_active,
+                      double activity_tolerance, double penetration_tolerance) {
+  trajectory.switches = detectSwitches(trajectory.elements, initially_active, activity_tolerance);
+  trajectory.unresolved_switches =
+      findUnresolvedSwitches(trajectory.elements, activity_tolerance, penetration_tolerance);
+}
+
 std::string describeUnresolvedSwitches(const std::vector<UnresolvedSwitch>& unresolved) {
   if (unresolved.empty()) return "";
   const UnresolvedSwitch& first = unresolved.front();

@@ -41,9 +41,11 @@ class Discretization {
   virtual std::vector<double> adoptedGuess(const Discretization& other,
                                            const std::vector<double>& solution) const = 0;
 
-  /// Reads the trajectory (times, states, stage values, controls, switches) from a solution.
+  /// Reads the trajectory (times, states, stage values, controls, switches, unresolved switches)
+  /// from a solution.
   virtual Trajectory extract(const double* x, double start_time = 0.0,
-                             double activity_tolerance = kDefaultActivityTolerance) const = 0;
+                             double activity_tolerance = kDefaultActivityTolerance,
+                             double penetration_tolerance = kDefaultPenetrationTolerance) const = 0;
   /// Which complementarity pairs are active at a state (the classification of a trajectory's
   /// start for detectSwitches).
   virtual std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const = 0;

@@ -67,7 +67,8 @@ class FesdDiscretization : public Discretization {
   /// Reads the trajectory (times, states, stage values, controls, switches) from a solution;
   /// times start at start_time.
   Trajectory extract(const double* x, double start_time = 0.0,
-                     double activity_tolerance = kDefaultActivityTolerance) const override;
+                     double activity_tolerance = kDefaultActivityTolerance,
+                     double penetration_tolerance = kDefaultPenetrationTolerance) const override;
   /// c_k(x) <= tolerance.
   std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const override;
 

@@ -31,6 +31,8 @@ struct OcpOptions {
   /// previous solution is not relaxed away.
   double warm_start_sigma = 1e-4;
   double activity_tolerance = kDefaultActivityTolerance;
+  /// Pass-through depth of an element's polynomial, in state units (see SimulationOptions).
+  double penetration_tolerance = kDefaultPenetrationTolerance;
 };
 
 struct OcpSolution {

@@ -85,7 +85,8 @@ class StewartDiscretization : public Discretization {
                                    const std::vector<double>& solution) const override;
 
   Trajectory extract(const double* x, double start_time = 0.0,
-                     double activity_tolerance = kDefaultActivityTolerance) const override;
+                     double activity_tolerance = kDefaultActivityTolerance,
+                     double penetration_tolerance = kDefaultPenetrationTolerance) const override;
   /// Modes whose indicator is within tolerance of its subsystem's minimum.
   std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const override;
 

@@ -63,8 +63,7 @@ struct Trajectory {
   bool switchesResolved() const { return unresolved_switches.empty(); }
   const Eigen::VectorXd& finalState() const { return states.back(); }
   /// Concatenates a trajectory that starts where this one ends. Switches are cleared: their
-  /// classification depends on the whole history, so call detectSwitches() and
-  /// findUnresolvedSwitches() on the result.
+  /// classification depends on the whole history, so call classifySwitches() on the result.
   void append(const Trajectory& next);
 };
 
@@ -103,6 +102,12 @@ std::vector<UnresolvedSwitch> findUnresolvedSwitches(
     const std::vector<ElementValues>& elements,
     double activity_tolerance = kDefaultActivityTolerance,
     double penetration_tolerance = kDefaultPenetrationTolerance);
+
+/// Sets a trajectory's switches (detectSwitches) and unresolved switches
+/// (findUnresolvedSwitches) from its element values; `initially_active` classifies its start.
+void classifySwitches(Trajectory& trajectory, const std::vector<bool>& initially_active,
+                      double activity_tolerance = kDefaultActivityTolerance,
+                      double penetration_tolerance = kDefaultPenetrationTolerance);
 
 /// A sentence for a result's message: how many elements hold an unresolved switch and the first
 /// one; "" when there are none.
