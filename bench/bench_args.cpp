@@ -75,4 +75,22 @@ fesd::StepEquilibration stepEquilibration(const Arguments& args) {
   throw std::invalid_argument("--equilibration takes indicator, tanh or none");
 }
 
+void applyHomotopyArguments(const Arguments& args, fesd::HomotopyOptions& options) {
+  options.sigma_initial = args.number("sigma0", options.sigma_initial);
+  options.sigma_reduction = args.number("kappa", options.sigma_reduction);
+  options.relaxed_tolerance_factor =
+      args.number("relaxed-tolerance-factor", options.relaxed_tolerance_factor);
+  options.max_steps = args.integer("max-steps", options.max_steps);
+  options.ipopt.tolerance = args.number("ipopt-tol", options.ipopt.tolerance);
+  options.ipopt.mu_strategy = args.text("mu-strategy", options.ipopt.mu_strategy);
+  options.ipopt.cold_start_mu_strategy =
+      args.text("cold-mu-strategy", options.ipopt.cold_start_mu_strategy);
+  options.ipopt.print_level = args.integer("ipopt-print-level", options.ipopt.print_level);
+  for (const std::string& option : args.texts("ipopt", {})) {
+    const size_t colon = option.find(':');
+    if (colon == std::string::npos) throw std::invalid_argument("--ipopt takes name:value,...");
+    options.ipopt.extra_options[option.substr(0, colon)] = option.substr(colon + 1);
+  }
+}
+
 }  // namespace fesd_bench

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "fesd_trajopt/core/mpcc_solver.h"
 #include "fesd_trajopt/core/ocp_definition.h"
 
 namespace fesd_bench {
@@ -31,5 +32,10 @@ class Arguments {
 
 /// --equilibration=indicator|tanh|none: a Filippov system's step equilibration.
 fesd::StepEquilibration stepEquilibration(const Arguments& args);
+
+/// Homotopy and Ipopt settings from --sigma0, --kappa, --max-steps, --relaxed-tolerance-factor,
+/// --ipopt-tol,
+/// --mu-strategy, --cold-mu-strategy, --ipopt-print-level and --ipopt=name:value,name:value.
+void applyHomotopyArguments(const Arguments& args, fesd::HomotopyOptions& options);
 
 }  // namespace fesd_bench

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "commands.h"
@@ -47,6 +50,41 @@ void printDivergence(const fesd::OcpDefinition& ocp, const fesd::OcpSolution& so
   }
 }
 
+/// The BLAS variant scripts/with_blas.sh set, or "system".
+const char* blasVariant() {
+  const char* variant = std::getenv("FESD_BLAS_VARIANT");
+  return variant ? variant : "system";
+}
+
+/// One line per relaxed NLP (sigma = 0: polishing), with enough digits to compare runs.
+void printHistory(const fesd::MpccReport& report) {
+  for (const fesd::HomotopyStep& step : report.history) {
+    std::printf("history sigma=%.3g iterations=%d residual=%.3e objective=%.12g ipopt=%s\n",
+                step.sigma, step.iterations, step.complementarity_residual, step.objective,
+                step.ipopt_status.c_str());
+  }
+}
+
+/// Per control interval boundary: time, state (body positions) and the control that follows.
+void printTrajectory(const fesd::Trajectory& trajectory) {
+  for (size_t k = 0; k < trajectory.interval_times.size(); ++k) {
+    const double time = trajectory.interval_times[k];
+    std::printf("trajectory t=%.4f x=", time);
+    const Eigen::VectorXd& x = stateAt(trajectory, time);
+    for (int i = 0; i < x.size(); ++i) std::printf("%s%.4f", i ? "," : "", x(i));
+    if (k < trajectory.controls.size()) {
+      std::printf(" u=");
+      const Eigen::VectorXd& u = trajectory.controls[k];
+      for (int i = 0; i < u.size(); ++i) std::printf("%s%.4f", i ? "," : "", u(i));
+    }
+    std::printf("\n");
+  }
+  for (const fesd::SwitchEvent& event : trajectory.switches) {
+    std::printf("switch t=%.6f constraint=%d kind=%s\n", event.time, event.constraint,
+                fesd::SwitchEvent::kindName(event.kind).c_str());
+  }
+}
+
 }  // namespace
 
 int ocpManipulation(const Arguments& args) {
@@ -57,6 +95,9 @@ int ocpManipulation(const Arguments& args) {
   options.discretization.switch_detection = args.flag("fesd", true);
   options.discretization.step_bound = args.number("step-bound", options.discretization.step_bound);
   options.fixed_grid_until_sigma = args.number("fixed-grid-until", options.fixed_grid_until_sigma);
+  options.discretization.equilibration_big_m =
+      args.number("big-m", options.discretization.equilibration_big_m);
+  applyHomotopyArguments(args, options.homotopy);
   const int repeat = args.integer("repeat", 1);
   fesd::SimulationOptions fine;
   fine.discretization.num_stages =
@@ -64,13 +105,23 @@ int ocpManipulation(const Arguments& args) {
   fine.discretization.num_elements =
       args.integer("resim-elements", 2 * options.discretization.num_elements);
   const bool divergence = args.flag("divergence", false);
+  const bool history = args.flag("history", false);
+  const std::string start = args.text("start", "plan");
+  if (start != "plan" && start != "constant") {
+    throw std::invalid_argument("--start takes plan or constant");
+  }
+  options.guess_sigma = args.number("guess-sigma", options.guess_sigma);
+  options.guess_early_polish_sigma =
+      args.number("guess-early-polish", options.guess_early_polish_sigma);
+  const bool print_trajectory = args.flag("trajectory", false);
   args.rejectUnused();
 
   const fesd::OcpDefinition ocp = fesd::manipulation_example::ocp(intervals);
+  const fesd::PushPlan plan = fesd::manipulation_example::plan(intervals);
   std::vector<double> walls;
   for (int r = 0; r < repeat; ++r) {
     fesd::OcpSolver solver(ocp, options);
-    const fesd::OcpSolution solution = solver.solve();
+    const fesd::OcpSolution solution = start == "plan" ? solver.solve(plan.guess) : solver.solve();
     const fesd::MpccReport& report = solution.report;
     const Eigen::VectorXd& end = solution.trajectory.finalState();
     int contacts = 0, releases = 0;
@@ -83,13 +134,17 @@ int ocpManipulation(const Arguments& args) {
         "run=%d status=%s objective=%.6g comp_residual=%.3g object_final_x=%.6f "
         "object_final_y=%.6f n_switches=%zu contacts=%d releases=%d resim_error=%.3g "
         "ipopt_iterations=%d wall_s=%.3f cpu_s=%.3f ipopt_s=%.3f eval_s=%.3f "
-        "homotopy_steps=%zu intervals=%d elements=%d stages=%d method=%s\n",
+        "homotopy_steps=%zu intervals=%d elements=%d stages=%d method=%s start=%s "
+        "blas=%s\n",
         r, fesd::statusName(solution.status).c_str(), report.objective,
         report.complementarity_residual, end(4), end(5), solution.trajectory.switches.size(),
         contacts, releases, resim, report.iterations, report.wall_seconds, report.cpu_seconds,
         report.ipopt_seconds, report.evaluation_seconds, report.history.size(), intervals,
         options.discretization.num_elements, options.discretization.num_stages,
-        options.discretization.switch_detection ? "fesd" : "standard");
+        options.discretization.switch_detection ? "fesd" : "standard", start.c_str(),
+        blasVariant());
+    if (history) printHistory(report);
+    if (print_trajectory) printTrajectory(solution.trajectory);
     if (divergence) printDivergence(ocp, solution, fine);
     std::fflush(stdout);
   }

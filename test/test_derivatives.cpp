@@ -211,6 +211,7 @@ struct NlpCase {
   bool switch_detection;
   fesd::CrossComplementarity cross;
   int stages;
+  fesd::PdsStepEquilibration equilibration = fesd::PdsStepEquilibration::kPolishing;
 };
 
 class NlpDerivatives : public ::testing::TestWithParam<NlpCase> {};
@@ -221,6 +222,7 @@ TEST_P(NlpDerivatives, JacobianAndLagrangianHessianAgainstFiniteDifferences) {
   options.num_elements = 3;
   options.switch_detection = GetParam().switch_detection;
   options.cross_complementarity = GetParam().cross;
+  options.pds_step_equilibration = GetParam().equilibration;
   fesd::FesdDiscretization discretization(beadOcp(), options);
   const auto errors = fesd_test::checkRelaxedNlpAtRandomPoints(discretization.nlp(), 3, 17);
   EXPECT_LT(errors.jacobian, kTolerance);
@@ -232,6 +234,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(NlpCase{true, fesd::CrossComplementarity::kElementSums, 2},
                       NlpCase{true, fesd::CrossComplementarity::kStagePairs, 2},
                       NlpCase{true, fesd::CrossComplementarity::kElementSums, 3},
+                      NlpCase{true, fesd::CrossComplementarity::kElementSums, 2,
+                              fesd::PdsStepEquilibration::kBigM},
                       NlpCase{false, fesd::CrossComplementarity::kElementSums, 2}));
 
 TEST(NlpStructure, StandardMethodHasNoCrossComplementarityOrEquilibration) {
@@ -239,13 +243,20 @@ TEST(NlpStructure, StandardMethodHasNoCrossComplementarityOrEquilibration) {
   fesd_options.num_stages = standard_options.num_stages = 2;
   fesd_options.num_elements = standard_options.num_elements = 3;
   standard_options.switch_detection = false;
-  fesd::FesdDiscretization with(beadOcp(), fesd_options), without(beadOcp(), standard_options);
+  fesd::DiscretizationOptions big_m_options = fesd_options;
+  big_m_options.pds_step_equilibration = fesd::PdsStepEquilibration::kBigM;
+  fesd::FesdDiscretization with(beadOcp(), fesd_options), without(beadOcp(), standard_options),
+      big_m(beadOcp(), big_m_options);
   // Standard: one pair per stage and constraint. FESD: one product of sums per element and
-  // constraint plus two max-KKT pairs per inner boundary and constraint.
+  // constraint; with the paper's big-M equilibration also two max-KKT pairs per inner boundary
+  // and constraint, and 8 auxiliaries per boundary and constraint plus one OR per boundary.
   const int elements = 6, stages = 2, constraints = 2, boundaries = 2 * 2;
   EXPECT_EQ(without.nlp().numComplementarities(), elements * stages * constraints);
-  EXPECT_EQ(with.nlp().numComplementarities(),
+  EXPECT_EQ(with.nlp().numComplementarities(), elements * constraints);
+  EXPECT_EQ(big_m.nlp().numComplementarities(),
             elements * constraints + 2 * boundaries * constraints);
+  EXPECT_EQ(big_m.nlp().numVariables() - with.nlp().numVariables(),
+            boundaries * (8 * constraints + 1));
   EXPECT_FALSE(without.stepsAreFree());
   EXPECT_TRUE(with.stepsAreFree());
 }

@@ -23,6 +23,48 @@ TEST(MpccSolver, ScholtesHomotopyReachesAStronglyStationaryPoint) {
   EXPECT_GE(report.wall_seconds, report.ipopt_seconds);
 }
 
+TEST(MpccSolver, EarlyPolishingEndsTheHomotopyAtABStationaryPoint) {
+  CornerMpcc problem;
+  fesd::HomotopyOptions options;
+  options.early_polish_sigma = 1e-2;
+  const fesd::MpccReport report = problem.solve(options);
+  ASSERT_EQ(report.status, fesd::SolveStatus::kSuccess) << report.message;
+  // sigma = 1, 0.1, 0.01 and 0.001 (the same active set twice), then the polished NLP
+  // (sigma 0) that is accepted at once.
+  ASSERT_EQ(report.history.size(), 5u);
+  EXPECT_DOUBLE_EQ(report.history[3].sigma, 1e-3);
+  EXPECT_DOUBLE_EQ(report.history[4].sigma, 0.0);
+  EXPECT_TRUE(report.polished);
+  EXPECT_TRUE(report.b_stationary);
+  EXPECT_EQ(report.complementarity_residual, 0.0);
+  EXPECT_NEAR(report.solution[problem.x], 1.0, 1e-8);
+  EXPECT_NEAR(report.solution[problem.y], 0.0, 1e-8);
+}
+
+/// min (x - 1)^2 + (y + 1)^2  s.t.  0 <= x _|_ y >= 0: the minimiser is (1, 0). Fixing the wrong
+/// side, x = 0, leaves y = 0 as well: a biactive point where raising x descends along
+/// -df/dx = 2, which is |grad f|_inf there.
+TEST(NlpAssembly, BiactiveDescentDetectsTheWrongFixedSide) {
+  fesd::NlpAssembly nlp;
+  const int x = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+  const int y = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+  nlp.addFunctionTerm(fesd::QuadraticFunction::weightedDistance(Eigen::Vector2d::Ones(),
+                                                                Eigen::Vector2d(1.0, -1.0)),
+                      {x, y}, -1, {{fesd::NlpAssembly::kObjective, 1.0}});
+  nlp.addComplementarity({{x, 1.0}}, {{y, 1.0}});
+  nlp.finalize();
+  const std::vector<double> origin{0.0, 0.0}, no_multipliers(nlp.numConstraints(), 0.0);
+  const std::vector<double> x_smaller{1e-3, 1e-2}, y_smaller{1e-2, 1e-3};
+  ASSERT_TRUE(nlp.fixActiveSet(x_smaller.data()));
+  EXPECT_DOUBLE_EQ(nlp.biactiveDescent(origin.data(), no_multipliers.data()), 1.0);
+  nlp.releaseActiveSet();
+  ASSERT_TRUE(nlp.fixActiveSet(y_smaller.data()));
+  const std::vector<double> minimiser{1.0, 0.0};
+  EXPECT_DOUBLE_EQ(nlp.biactiveDescent(minimiser.data(), no_multipliers.data()), 0.0);
+  nlp.releaseActiveSet();
+  EXPECT_THROW(nlp.biactiveDescent(minimiser.data(), no_multipliers.data()), std::logic_error);
+}
+
 TEST(MpccSolver, SmoothProblemIsSolvedOnceWithoutHomotopy) {
   fesd::NlpAssembly nlp;
   const int x = nlp.addVariables(2, -10.0, 10.0);

@@ -1,6 +1,7 @@
 // The OCP layer: an LQ problem against its Riccati solution, and the collaborative manipulation
 // showcase of seed 000 Sec. IV-B with FESD and with the standard method.
 #include <cmath>
+#include <cstdlib>
 
 #include <gtest/gtest.h>
 
@@ -60,14 +61,33 @@ struct ShowcaseRun {
   double resimulation_error;
 };
 
-ShowcaseRun solveShowcase(bool fesd_on) {
-  const fesd::OcpDefinition ocp = fesd::manipulation_example::ocp(40);
+fesd::OcpOptions showcaseOptions(bool fesd_on) {
   fesd::OcpOptions options;
   options.discretization.num_stages = 2;
   options.discretization.num_elements = 3;
   options.discretization.switch_detection = fesd_on;
-  fesd::OcpSolver solver(ocp, options);
-  ShowcaseRun run{solver.solve(), 0.0};
+  return options;
+}
+
+/// The showcase (N = 40, N_FE = 3, n_s = 2) solved from its push plan, as the node solves it;
+/// `perturbation` adds seeded relative noise of that size to the plan's states and controls.
+ShowcaseRun solveShowcase(bool fesd_on, double perturbation = 0.0) {
+  const fesd::OcpDefinition ocp = fesd::manipulation_example::ocp(40);
+  fesd::TrajectoryGuess guess = fesd::manipulation_example::plan(40).guess;
+  if (perturbation > 0.0) {
+    std::srand(7);
+    auto noisy = [perturbation](Eigen::VectorXd v) {
+      for (int i = 0; i < v.size(); ++i) {
+        v(i) *= 1.0 + perturbation * (2.0 * std::rand() / RAND_MAX - 1.0);
+      }
+      return v;
+    };
+    const auto state = guess.state;
+    guess.state = [state, noisy](double t) { return noisy(state(t)); };
+    for (Eigen::VectorXd& u : guess.controls) u = noisy(u);
+  }
+  fesd::OcpSolver solver(ocp, showcaseOptions(fesd_on));
+  ShowcaseRun run{solver.solve(guess), 0.0};
   fesd::SimulationOptions fine;
   fine.discretization.num_stages = 3;
   fine.discretization.num_elements = 6;
@@ -77,28 +97,59 @@ ShowcaseRun solveShowcase(bool fesd_on) {
   return run;
 }
 
+/// The objective of the showcase solved from its plan, as measured under reference BLAS and
+/// OpenBLAS (Prescott, Haswell, SkylakeX kernels): the same to 12 digits under all four.
+constexpr double kShowcaseObjective = 0.0552151506;
+
 TEST(ManipulationShowcase, FesdSolvesItWithContactsReleasesAndThePlanHoldsUp) {
   const ShowcaseRun run = solveShowcase(true);
   const fesd::OcpSolution& solution = run.solution;
   ASSERT_EQ(solution.status, fesd::SolveStatus::kSuccess) << solution.message;
-  EXPECT_LE(solution.report.complementarity_residual, 1e-8);
+  EXPECT_EQ(solution.report.complementarity_residual, 0.0);
+  EXPECT_TRUE(solution.report.b_stationary);
+  EXPECT_TRUE(solution.trajectory.switchesResolved());
+  EXPECT_NEAR(solution.report.objective / kShowcaseObjective, 1.0, 1e-4);
+  EXPECT_LE(solution.report.iterations, 150);
   const Eigen::VectorXd& end = solution.trajectory.finalState();
-  EXPECT_LT((end.tail<2>() - fesd::manipulation_example::objectGoal()).norm(), 0.1);
+  EXPECT_LT((end.tail<2>() - fesd::manipulation_example::objectGoal()).norm(), 1e-3);
   for (const Eigen::VectorXd& x : solution.trajectory.states) {  // every element boundary
     EXPECT_LE(x(0), -2.5 + 1e-6);
     EXPECT_GE(x(2), 2.5 - 1e-6);
   }
-  int contacts = 0, releases = 0;
+  // Both actuators touch the object once and let go once.
+  ASSERT_EQ(solution.trajectory.switches.size(), 4u);
+  int contacts = 0;
   for (const fesd::SwitchEvent& event : solution.trajectory.switches) {
-    (event.kind == fesd::SwitchEvent::Kind::kContact ? contacts : releases)++;
+    contacts += event.kind == fesd::SwitchEvent::Kind::kContact;
   }
-  EXPECT_GE(contacts, 1);
-  EXPECT_GE(releases, 1);
-  // Re-simulated on a finer grid (3 stages, 6 elements per interval). The issue asks for 1e-3;
-  // this plan amplifies state errors about 400-fold (README), so n_s = 2 reaches 0.03 only.
-  EXPECT_LT(run.resimulation_error, 0.1);
-  std::printf("FESD showcase: resimulation error %.3g, %d Ipopt iterations, %.2f s\n",
-              run.resimulation_error, solution.report.iterations, solution.report.wall_seconds);
+  EXPECT_EQ(contacts, 2);
+  // Re-simulated on a finer grid (3 stages, 6 elements per interval). This plan amplifies state
+  // errors made in the contact interval about 250-fold (README); measured 1.9e-3.
+  EXPECT_LT(run.resimulation_error, 1e-2);
+  std::printf(
+      "FESD showcase: objective %.10g, resimulation error %.3g, %d Ipopt iterations, "
+      "%.2f s\n",
+      solution.report.objective, run.resimulation_error, solution.report.iterations,
+      solution.report.wall_seconds);
+}
+
+TEST(ManipulationShowcase, TheSolutionDoesNotHingeOnRounding) {
+  // Relative noise of 1e-9 on the plan stands for rounding far larger than any BLAS kernel's:
+  // the solve must end at the same point, not in a neighbouring local optimum.
+  const ShowcaseRun exact = solveShowcase(true), perturbed = solveShowcase(true, 1e-9);
+  ASSERT_EQ(perturbed.solution.status, fesd::SolveStatus::kSuccess) << perturbed.solution.message;
+  EXPECT_NEAR(perturbed.solution.report.objective / exact.solution.report.objective, 1.0, 1e-8);
+  const auto& switches = exact.solution.trajectory.switches;
+  const auto& perturbed_switches = perturbed.solution.trajectory.switches;
+  ASSERT_EQ(perturbed_switches.size(), switches.size());
+  for (size_t k = 0; k < switches.size(); ++k) {
+    EXPECT_EQ(perturbed_switches[k].constraint, switches[k].constraint);
+    EXPECT_EQ(perturbed_switches[k].kind, switches[k].kind);
+    EXPECT_NEAR(perturbed_switches[k].time, switches[k].time, 1e-6);
+  }
+  EXPECT_LT(
+      (perturbed.solution.trajectory.finalState() - exact.solution.trajectory.finalState()).norm(),
+      1e-6);
 }
 
 TEST(ManipulationShowcase, WarmStartFromAPreviousSolutionConvergesAtOnce) {
@@ -106,12 +157,12 @@ TEST(ManipulationShowcase, WarmStartFromAPreviousSolutionConvergesAtOnce) {
   fesd::OcpOptions options;
   options.discretization.num_elements = 2;
   fesd::OcpSolver solver(ocp, options);
-  const fesd::OcpSolution first = solver.solve();
+  const fesd::OcpSolution first = solver.solve(fesd::manipulation_example::plan(30).guess);
   ASSERT_EQ(first.status, fesd::SolveStatus::kSuccess) << first.message;
   const fesd::OcpSolution again = solver.solve(first);
   ASSERT_EQ(again.status, fesd::SolveStatus::kSuccess) << again.message;
   EXPECT_NEAR(again.report.objective, first.report.objective, 1e-6);
-  EXPECT_LT(again.report.iterations, first.report.iterations / 5);
+  EXPECT_LT(again.report.iterations, first.report.iterations / 3);
 }
 
 TEST(ManipulationShowcase, StandardMethodOnTheSameGridForComparison) {

@@ -104,6 +104,24 @@ void guessControls(const NlpAssembly& nlp, const CollocationGrid& grid, int nu,
   }
 }
 
+void guessGridPoints(const NlpAssembly& nlp, const CollocationGrid& grid,
+                     const ButcherTableau& tableau, double h0, int nx, int nu,
+                     const TrajectoryGuess& guess, std::vector<double>& x) {
+  if (!guess.state) throw std::invalid_argument("TrajectoryGuess: no state");
+  auto set_state = [&](int first, double time) {
+    const Eigen::VectorXd state = guess.state(time);
+    if (state.size() != nx) throw std::invalid_argument("TrajectoryGuess: state of wrong size");
+    std::copy(state.data(), state.data() + nx, x.begin() + first);
+  };
+  for (int e = 0; e < grid.numElements(); ++e) {
+    for (int i = 0; i < tableau.stages; ++i)
+      set_state(grid.stage_states[e][i], (e + tableau.c(i)) * h0);
+    set_state(grid.end_states[e], (e + 1) * h0);
+    x[grid.steps[e]] = h0;
+  }
+  guessControls(nlp, grid, nu, guess.controls, x);
+}
+
 void addIntervalLengthRows(NlpAssembly& nlp, const CollocationGrid& grid,
                            const OcpDefinition& ocp) {
   const double interval_length = ocp.horizon / ocp.num_intervals;

@@ -164,21 +164,8 @@ void FesdDiscretization::buildComplementarity() {
   }
 }
 
-LinearExpression FesdDiscretization::rangeExpression(int first, int count, int stride) const {
-  LinearExpression expression;
-  for (int i = 0; i < count; ++i) expression.push_back({first + i * stride, 1.0});
-  return expression;
-}
-
 void FesdDiscretization::buildStepEquilibration() {
   if (!steps_free_) return;
-  auxiliary_variables_begin_ = nlp_.numVariables();
-  auxiliary_rows_begin_ = nlp_.numConstraints();
-  const double big_m = options_.equilibration_big_m * nominal_step_;
-  auto add_row = [&](const LinearExpression& expression, double lower, double upper) {
-    const int row = nlp_.addRows(1, lower, upper);
-    nlp_.addLinear(row, expression);
-  };
   // Sums over the points of an element's closure. The backward sums also take the element's start
   // point: with one Radau stage (the end point) the stage points alone carry no trace of a
   // contact or release at the element's end, and nu would vanish at every switch (Table I needs
@@ -195,6 +182,39 @@ void FesdDiscretization::buildStepEquilibration() {
     }
     return sum;
   };
+  auxiliary_variables_begin_ = auxiliary_variables_end_ = nlp_.numVariables();
+  auxiliary_rows_begin_ = auxiliary_rows_end_ = nlp_.numConstraints();
+  for (int k_interval = 0; k_interval < ocp_.num_intervals; ++k_interval) {
+    for (int n = 1; n < options_.num_elements; ++n) {
+      const int element = k_interval * options_.num_elements + n;
+      EquilibrationAuxiliaries boundary{element - 1, element, {}, {}, {}, {}, {}, {}, {}, -1, -1};
+      for (int k = 0; k < nc_; ++k) {
+        boundary.sums.push_back(
+            {closure_sum(element - 1, k, true, true), closure_sum(element, k, true, false),
+             closure_sum(element - 1, k, false, true), closure_sum(element, k, false, false)});
+      }
+      addStepRegularizer(nlp_, options_, nominal_step_, grid_.steps[element - 1],
+                         grid_.steps[element]);
+      equilibration_.push_back(boundary);
+    }
+  }
+  if (options_.pds_step_equilibration == PdsStepEquilibration::kBigM) addBigMEquilibration();
+  for (EquilibrationAuxiliaries& aux : equilibration_) {
+    aux.equal_steps_row = nlp_.addRows(1, -kInf, kInf);
+    nlp_.addLinear(aux.equal_steps_row,
+                   {{grid_.steps[aux.previous_element], 1.0}, {grid_.steps[aux.element], -1.0}});
+  }
+  nlp_.setActiveSetHook([this](const double* x) { equilibrateActiveSet(x); });
+}
+
+void FesdDiscretization::addBigMEquilibration() {
+  auxiliary_variables_begin_ = nlp_.numVariables();
+  auxiliary_rows_begin_ = nlp_.numConstraints();
+  const double big_m = options_.equilibration_big_m * nominal_step_;
+  auto add_row = [&](const LinearExpression& expression, double lower, double upper) {
+    const int row = nlp_.addRows(1, lower, upper);
+    nlp_.addLinear(row, expression);
+  };
   auto scaled = [](LinearExpression expression, double factor) {
     for (LinearTerm& t : expression) t.coefficient *= factor;
     return expression;
@@ -203,72 +223,56 @@ void FesdDiscretization::buildStepEquilibration() {
     a.insert(a.end(), b.begin(), b.end());
     return a;
   };
-  for (int k_interval = 0; k_interval < ocp_.num_intervals; ++k_interval) {
-    for (int n = 1; n < options_.num_elements; ++n) {
-      const int element = k_interval * options_.num_elements + n;
-      EquilibrationAuxiliaries aux{element - 1, element, {}, {}, {}, {}, {}, {}, {}, -1, -1};
-      LinearExpression any_switch_upper;
-      for (int k = 0; k < nc_; ++k) {
-        const int pi_lambda = nlp_.addVariables(1, 0.0, kInf);
-        const int pi_c = nlp_.addVariables(1, 0.0, kInf);
-        const int maximum = nlp_.addVariables(1, 0.0, kInf);
-        const int gap = nlp_.addVariables(2, 0.0, kInf);      // max - pi_c, max - pi_lambda
-        const int kkt = nlp_.addVariables(2, 0.0, 1.0, 0.5);  // LP multipliers of max
-        const int nu = nlp_.addVariables(1, 0.0, kInf);
-        const BoundarySums sums{
-            closure_sum(element - 1, k, true, true), closure_sum(element, k, true, false),
-            closure_sum(element - 1, k, false, true), closure_sum(element, k, false, false)};
-        // pi = backward v forward:  pi >= B, pi >= F, pi <= B + F
-        const std::tuple<int, const LinearExpression&, const LinearExpression&> disjunctions[] = {
-            {pi_lambda, sums.lambda_backward, sums.lambda_forward},
-            {pi_c, sums.c_backward, sums.c_forward}};
-        for (const auto& [pi, backward, forward] : disjunctions) {
-          add_row(concat({{pi, 1.0}}, scaled(backward, -1.0)), 0.0, kInf);
-          add_row(concat({{pi, 1.0}}, scaled(forward, -1.0)), 0.0, kInf);
-          add_row(concat(concat({{pi, 1.0}}, scaled(backward, -1.0)), scaled(forward, -1.0)), -kInf,
-                  0.0);
-        }
-        // maximum = max(pi_c, pi_lambda) by the KKT conditions of min z s.t. z >= pi_c, pi_lambda:
-        // gaps z - pi >= 0 (lifted, so every complementarity pair is between nonnegative
-        // variables), multipliers summing to one, each complementary to its gap.
-        add_row({{gap, 1.0}, {maximum, -1.0}, {pi_c, 1.0}}, 0.0, 0.0);
-        add_row({{gap + 1, 1.0}, {maximum, -1.0}, {pi_lambda, 1.0}}, 0.0, 0.0);
-        add_row({{kkt, 1.0}, {kkt + 1, 1.0}}, 1.0, 1.0);
-        nlp_.addComplementarity({{gap, 1.0}}, {{kkt, 1.0}});
-        nlp_.addComplementarity({{gap + 1, 1.0}}, {{kkt + 1, 1.0}});
-        // nu = pi_c ^ pi_lambda:  nu <= pi_c, nu <= pi_lambda, nu >= pi_c + pi_lambda - max
-        add_row({{nu, 1.0}, {pi_c, -1.0}}, -kInf, 0.0);
-        add_row({{nu, 1.0}, {pi_lambda, -1.0}}, -kInf, 0.0);
-        add_row({{nu, 1.0}, {pi_c, -1.0}, {pi_lambda, -1.0}, {maximum, 1.0}}, 0.0, kInf);
-        aux.sums.push_back(sums);
-        aux.pi_lambda.push_back(pi_lambda);
-        aux.pi_c.push_back(pi_c);
-        aux.maximum.push_back(maximum);
-        aux.gap.push_back(gap);
-        aux.kkt.push_back(kkt);
-        aux.nu.push_back(nu);
-        any_switch_upper.push_back({nu, -1.0});
+  for (EquilibrationAuxiliaries& aux : equilibration_) {
+    LinearExpression any_switch_upper;
+    for (const BoundarySums& sums : aux.sums) {
+      const int pi_lambda = nlp_.addVariables(1, 0.0, kInf);
+      const int pi_c = nlp_.addVariables(1, 0.0, kInf);
+      const int maximum = nlp_.addVariables(1, 0.0, kInf);
+      const int gap = nlp_.addVariables(2, 0.0, kInf);      // max - pi_c, max - pi_lambda
+      const int kkt = nlp_.addVariables(2, 0.0, 1.0, 0.5);  // LP multipliers of max
+      const int nu = nlp_.addVariables(1, 0.0, kInf);
+      // pi = backward v forward:  pi >= B, pi >= F, pi <= B + F
+      const std::tuple<int, const LinearExpression&, const LinearExpression&> disjunctions[] = {
+          {pi_lambda, sums.lambda_backward, sums.lambda_forward},
+          {pi_c, sums.c_backward, sums.c_forward}};
+      for (const auto& [pi, backward, forward] : disjunctions) {
+        add_row(concat({{pi, 1.0}}, scaled(backward, -1.0)), 0.0, kInf);
+        add_row(concat({{pi, 1.0}}, scaled(forward, -1.0)), 0.0, kInf);
+        add_row(concat(concat({{pi, 1.0}}, scaled(backward, -1.0)), scaled(forward, -1.0)), -kInf,
+                0.0);
       }
-      // OR over the constraints: nu_k <= eta <= sum_k nu_k
-      aux.any_switch = nlp_.addVariables(1, 0.0, kInf);
-      for (int nu : aux.nu) add_row({{aux.any_switch, 1.0}, {nu, -1.0}}, 0.0, kInf);
-      add_row(concat({{aux.any_switch, 1.0}}, any_switch_upper), -kInf, 0.0);
-      // -eta M <= h_{n-1} - h_n <= eta M
-      const int h_prev = grid_.steps[element - 1], h = grid_.steps[element];
-      addStepRegularizer(nlp_, options_, nominal_step_, h_prev, h);
-      add_row({{h_prev, 1.0}, {h, -1.0}, {aux.any_switch, -big_m}}, -kInf, 0.0);
-      add_row({{h_prev, 1.0}, {h, -1.0}, {aux.any_switch, big_m}}, 0.0, kInf);
-      equilibration_.push_back(aux);
+      // maximum = max(pi_c, pi_lambda) by the KKT conditions of min z s.t. z >= pi_c, pi_lambda:
+      // gaps z - pi >= 0 (lifted, so every complementarity pair is between nonnegative
+      // variables), multipliers summing to one, each complementary to its gap.
+      add_row({{gap, 1.0}, {maximum, -1.0}, {pi_c, 1.0}}, 0.0, 0.0);
+      add_row({{gap + 1, 1.0}, {maximum, -1.0}, {pi_lambda, 1.0}}, 0.0, 0.0);
+      add_row({{kkt, 1.0}, {kkt + 1, 1.0}}, 1.0, 1.0);
+      nlp_.addComplementarity({{gap, 1.0}}, {{kkt, 1.0}});
+      nlp_.addComplementarity({{gap + 1, 1.0}}, {{kkt + 1, 1.0}});
+      // nu = pi_c ^ pi_lambda:  nu <= pi_c, nu <= pi_lambda, nu >= pi_c + pi_lambda - max
+      add_row({{nu, 1.0}, {pi_c, -1.0}}, -kInf, 0.0);
+      add_row({{nu, 1.0}, {pi_lambda, -1.0}}, -kInf, 0.0);
+      add_row({{nu, 1.0}, {pi_c, -1.0}, {pi_lambda, -1.0}, {maximum, 1.0}}, 0.0, kInf);
+      aux.pi_lambda.push_back(pi_lambda);
+      aux.pi_c.push_back(pi_c);
+      aux.maximum.push_back(maximum);
+      aux.gap.push_back(gap);
+      aux.kkt.push_back(kkt);
+      aux.nu.push_back(nu);
+      any_switch_upper.push_back({nu, -1.0});
     }
+    // OR over the constraints: nu_k <= eta <= sum_k nu_k
+    aux.any_switch = nlp_.addVariables(1, 0.0, kInf);
+    for (int nu : aux.nu) add_row({{aux.any_switch, 1.0}, {nu, -1.0}}, 0.0, kInf);
+    add_row(concat({{aux.any_switch, 1.0}}, any_switch_upper), -kInf, 0.0);
+    // -eta M <= h_{n-1} - h_n <= eta M
+    const int h_prev = grid_.steps[aux.previous_element], h = grid_.steps[aux.element];
+    add_row({{h_prev, 1.0}, {h, -1.0}, {aux.any_switch, -big_m}}, -kInf, 0.0);
+    add_row({{h_prev, 1.0}, {h, -1.0}, {aux.any_switch, big_m}}, 0.0, kInf);
   }
   auxiliary_variables_end_ = nlp_.numVariables();
   auxiliary_rows_end_ = nlp_.numConstraints();
-  for (EquilibrationAuxiliaries& aux : equilibration_) {
-    aux.equal_steps_row = nlp_.addRows(1, -kInf, kInf);
-    nlp_.addLinear(aux.equal_steps_row,
-                   {{grid_.steps[aux.previous_element], 1.0}, {grid_.steps[aux.element], -1.0}});
-  }
-  nlp_.setActiveSetHook([this](const double* x) { equilibrateActiveSet(x); });
 }
 
 void FesdDiscretization::equilibrateActiveSet(const double* x) {
@@ -357,6 +361,30 @@ std::vector<double> FesdDiscretization::constantGuess(
   return x;
 }
 
+std::vector<double> FesdDiscretization::guessFrom(const TrajectoryGuess& guess) const {
+  std::vector<double> x = nlp_.initialGuess();  // holds the start point's data
+  guessGridPoints(nlp_, grid_, tableau_, nominal_step_, nx_, nu_, guess, x);
+  for (int e = 0; e < numElements(); ++e) {
+    for (int i = 0; i < tableau_.stages; ++i) {
+      const StagePoint& point = stages_[e][i];
+      model_->constraints()->evaluate(x.data() + point.x, x.data() + point.s);
+      const Eigen::VectorXd lambda = guess.multipliers
+                                         ? guess.multipliers((e + tableau_.c(i)) * nominal_step_)
+                                         : Eigen::VectorXd::Zero(nc_);
+      if (lambda.size() != nc_) {
+        throw std::invalid_argument("TrajectoryGuess: multipliers of the wrong size");
+      }
+      for (int k = 0; k < nc_; ++k) {
+        // A planned path may graze into a constraint; its lifted value stays within its bound.
+        x[point.s + k] = std::max(x[point.s + k], 0.0);
+        x[point.lambda + k] = std::max(lambda(k), 0.0);
+      }
+    }
+  }
+  completeAuxiliaries(x);
+  return x;
+}
+
 std::vector<double> FesdDiscretization::adoptedGuess(const Discretization& other_discretization,
                                                      const std::vector<double>& solution) const {
   const auto* other_pointer = dynamic_cast<const FesdDiscretization*>(&other_discretization);
@@ -405,6 +433,7 @@ void FesdDiscretization::completeAuxiliaries(std::vector<double>& x) const {
     return total;
   };
   for (const EquilibrationAuxiliaries& aux : equilibration_) {
+    if (aux.any_switch < 0) continue;  // no big-M auxiliaries
     double any = 0.0;
     for (int k = 0; k < nc_; ++k) {
       const BoundarySums& sums = aux.sums[k];

@@ -39,5 +39,9 @@ OcpDefinition ocp(int num_intervals) {
   return buildOcp(task(num_intervals), contactPairs());
 }
 
+PushPlan plan(int num_intervals) {
+  return planPushes(task(num_intervals), contactPairs());
+}
+
 }  // namespace manipulation_example
 }  // namespace fesd

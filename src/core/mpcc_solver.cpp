@@ -35,7 +35,10 @@ std::string describe(const MpccReport& report, double tolerance) {
           << report.iterations << " Ipopt iterations";
   if (!report.history.empty()) message << ", last NLP " << report.history.back().ipopt_status;
   message << ", complementarity residual " << report.complementarity_residual << " (tolerance "
-          << tolerance << ")" << (report.polished ? ", active set polished" : "");
+          << tolerance << ")"
+          << (report.polished ? report.b_stationary ? ", active set polished (B-stationary)"
+                                                    : ", active set polished"
+                              : "");
   return message.str();
 }
 
@@ -121,11 +124,13 @@ IpoptSession::SolveSettings initialSettings(const HomotopyOptions& options,
   return settings;
 }
 
-/// The polishing stage: keeps `report` as it is unless a polished NLP converges.
+/// The polishing stage: keeps `report` as it is unless a polished NLP converges (and, if
+/// `require_stationarity`, is B-stationary). Tries the identified active set, then flips the
+/// most ambiguous pairs one at a time, `attempts` solves in all.
 void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& problem,
             const PrimalDualPoint& converged, const IpoptSession::SolveSettings& settings,
-            MpccReport& report) {
-  for (int attempt = 0; attempt < options.polish_attempts; ++attempt) {
+            int attempts, bool require_stationarity, MpccReport& report) {
+  for (int attempt = 0; attempt < attempts; ++attempt) {
     if (!problem.fixActiveSet(converged.x.data(), attempt - 1)) return;
     PrimalDualPoint point = converged;
     // The dropped product rows are inactive from now on: their multipliers are zero.
@@ -133,21 +138,29 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
       for (int row : problem.complementarityRows()) point.constraint_multipliers[row] = 0.0;
     }
     const NlpOutcome outcome = session.solve(problem, point, settings);
+    const bool solved = IpoptSession::converged(outcome.status);
+    const double descent =
+        solved && point.has_multipliers
+            ? problem.biactiveDescent(point.x.data(), point.constraint_multipliers.data())
+            : std::numeric_limits<double>::infinity();
     problem.releaseActiveSet();
     const double residual = problem.complementarityResidual(point.x.data());
     report.history.push_back({0.0, outcome.iterations, residual, outcome.objective,
                               IpoptSession::statusName(outcome.status), outcome.wall_seconds,
-                              IpoptSession::converged(outcome.status)});
+                              solved});
     report.iterations += outcome.iterations;
     report.evaluation_seconds += outcome.evaluation_seconds;
     report.ipopt_seconds += outcome.wall_seconds - outcome.evaluation_seconds;
-    if (IpoptSession::converged(outcome.status) && residual <= report.complementarity_residual) {
+    const bool stationary = descent <= options.stationarity_tolerance;
+    if (solved && residual <= report.complementarity_residual &&
+        (stationary || !require_stationarity)) {
       report.solution = point.x;
       report.multipliers = {point.bound_lower_multipliers, point.bound_upper_multipliers,
                             point.constraint_multipliers};
       report.objective = outcome.objective;
       report.complementarity_residual = residual;
       report.polished = true;
+      report.b_stationary = stationary;
       return;
     }
     if (outcome.status == Ipopt::User_Requested_Stop) return;  // out of time: keep the homotopy's
@@ -198,7 +211,7 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
         initialSettings(options_, problem, point.x, wall_time_budget);
     settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma_initial;
     settings.tolerance = options_.ipopt.tolerance;
-    polish(*session_, options_, problem, point, settings, report);
+    polish(*session_, options_, problem, point, settings, options_.polish_attempts, true, report);
     if (polishedToTolerance(report, options_)) {
       report.status = SolveStatus::kSuccess;
       report.message = "success: polished from the previous solution's active set, " +
@@ -235,6 +248,8 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
   double best_residual = std::numeric_limits<double>::infinity(), best_sigma = sigma,
          best_objective = 0.0;
   int consecutive_infeasible = 0;
+  // Active sets identified by the last converged relaxation and by the last early polishing.
+  std::vector<bool> settled_candidate, polished_set;
   for (int step = 0; step < steps; ++step) {
     problem.setRelaxation(sigma);
     settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma;
@@ -266,6 +281,24 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
       report.status = SolveStatus::kSuccess;
       break;
     }
+    // sigma is a product of rounded factors: 1 * 0.1 * 0.1 exceeds 1e-2 by an ulp.
+    if (converged && !smooth && options_.polish_active_set &&
+        sigma <= options_.early_polish_sigma * (1.0 + 1e-9)) {
+      // Polish only an active set that two relaxations in a row identify, once: before it has
+      // settled, polishing would fix it, and with it the grid's switch elements, too early.
+      const std::vector<bool> active_set = problem.identifyActiveSet(point.x.data());
+      if (!active_set.empty() && active_set == settled_candidate && active_set != polished_set) {
+        polished_set = active_set;
+        IpoptSession::SolveSettings polish_settings = settings;
+        polish_settings.tolerance = options_.ipopt.tolerance;
+        polish(*session_, options_, problem, point, polish_settings, 1, true, report);
+        if (polishedToTolerance(report, options_)) {
+          report.status = SolveStatus::kSuccess;
+          break;
+        }
+      }
+      settled_candidate = active_set;
+    }
     report.status = converged ? SolveStatus::kComplementarityNotMet : failureStatus(outcome.status);
     if (report.status == SolveStatus::kTimeout) break;
     consecutive_infeasible =
@@ -296,14 +329,15 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
   }
   if (!smooth && options_.polish_active_set) {
     settings.tolerance = options_.ipopt.tolerance;
-    if (report.status == SolveStatus::kSuccess) {
+    if (report.status == SolveStatus::kSuccess && !report.polished) {
       settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma;
-      polish(*session_, options_, problem, point, settings, report);
+      polish(*session_, options_, problem, point, settings, options_.polish_attempts, false,
+             report);
     } else if (report.status != SolveStatus::kTimeout &&
                best_residual <= options_.polish_rescue_residual) {
       settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * best_sigma;
       report.complementarity_residual = best_residual;
-      polish(*session_, options_, problem, best, settings, report);
+      polish(*session_, options_, problem, best, settings, options_.polish_attempts, false, report);
       if (polishedToTolerance(report, options_)) report.status = SolveStatus::kSuccess;
     }
   }

@@ -334,11 +334,11 @@ void NlpAssembly::setRelaxation(double sigma) {
   for (const auto& [row, scale] : relaxed_rows_) setRowBounds(row, -scale * sigma, scale * sigma);
 }
 
-bool NlpAssembly::fixActiveSet(const double* x, int flip) {
-  releaseActiveSet();
+NlpAssembly::ActiveSetChoice NlpAssembly::chooseActiveSet(const double* x) const {
   const int pairs = static_cast<int>(complementarities_.size());
-  std::vector<bool> left_is_zero(pairs);
-  std::vector<double> ambiguity(pairs);
+  ActiveSetChoice choice;
+  choice.left_is_zero.resize(pairs);
+  choice.ambiguity.resize(pairs);
   // A side with a fixed nonzero term (data, e.g. c or lambda at a step's start point) cannot
   // vanish, so the other side must, however small this side is at x.
   const auto canVanish = [this](const std::vector<LinearTerm>& side) {
@@ -351,14 +351,32 @@ bool NlpAssembly::fixActiveSet(const double* x, int flip) {
   for (int p = 0; p < pairs; ++p) {
     const Complementarity& comp = complementarities_[p];
     const bool left_can_vanish = canVanish(comp.left), right_can_vanish = canVanish(comp.right);
-    if (!left_can_vanish && !right_can_vanish) return false;
+    if (!left_can_vanish && !right_can_vanish) {
+      choice.valid = false;
+      return choice;
+    }
     const double left = evaluateLinear(comp.left, x);
     const double right = evaluateLinear(comp.right, x);
-    left_is_zero[p] = left_can_vanish && (left <= right || !right_can_vanish);
+    choice.left_is_zero[p] = left_can_vanish && (left <= right || !right_can_vanish);
     const double larger = std::max(std::fabs(left), std::fabs(right));
     const bool decided = !left_can_vanish || !right_can_vanish || larger == 0.0;
-    ambiguity[p] = decided ? 0.0 : std::min(std::fabs(left), std::fabs(right)) / larger;
+    choice.ambiguity[p] = decided ? 0.0 : std::min(std::fabs(left), std::fabs(right)) / larger;
   }
+  return choice;
+}
+
+std::vector<bool> NlpAssembly::identifyActiveSet(const double* x) const {
+  ActiveSetChoice choice = chooseActiveSet(x);
+  return choice.valid ? choice.left_is_zero : std::vector<bool>();
+}
+
+bool NlpAssembly::fixActiveSet(const double* x, int flip) {
+  releaseActiveSet();
+  const int pairs = static_cast<int>(complementarities_.size());
+  ActiveSetChoice choice = chooseActiveSet(x);
+  if (!choice.valid) return false;
+  std::vector<bool>& left_is_zero = choice.left_is_zero;
+  const std::vector<double>& ambiguity = choice.ambiguity;
   if (flip >= 0) {
     std::vector<int> order(pairs);
     for (int p = 0; p < pairs; ++p) order[p] = p;
@@ -383,6 +401,7 @@ bool NlpAssembly::fixActiveSet(const double* x, int flip) {
   saved_g_upper_ = g_upper_;
   for (int variable : to_fix) x_upper_[variable] = 0.0;
   for (int row : complementarity_rows_) g_upper_[row] = kInfinity;
+  fixed_left_ = left_is_zero;
   if (hook_) hook_(x);
   return true;
 }
@@ -394,6 +413,34 @@ void NlpAssembly::releaseActiveSet() {
   g_lower_.swap(saved_g_lower_);
   g_upper_.swap(saved_g_upper_);
   saved_x_lower_.clear();
+}
+
+double NlpAssembly::biactiveDescent(const double* x, const double* multipliers) const {
+  if (saved_x_lower_.empty()) throw std::logic_error("biactiveDescent: no active set is fixed");
+  const int n = numVariables();
+  std::vector<double> gradient(n), jacobian_values(jacobian_slots_.pattern().nonzeros());
+  objectiveGradient(x, gradient.data());
+  double scale = 1.0;
+  for (double g : gradient) scale = std::max(scale, std::fabs(g));
+  std::vector<double> lagrangian_gradient = gradient;
+  jacobian(x, jacobian_values.data());
+  const SparsityPattern& pattern = jacobian_slots_.pattern();
+  for (size_t e = 0; e < jacobian_values.size(); ++e) {
+    lagrangian_gradient[pattern.cols[e]] += multipliers[pattern.rows[e]] * jacobian_values[e];
+  }
+  double descent = 0.0;
+  for (size_t p = 0; p < complementarities_.size(); ++p) {
+    const Complementarity& comp = complementarities_[p];
+    const LinearExpression& fixed = fixed_left_[p] ? comp.left : comp.right;
+    const LinearExpression& free = fixed_left_[p] ? comp.right : comp.left;
+    if (evaluateLinear(free, x) > kNegligibleFixedValue) continue;
+    for (const LinearTerm& t : fixed) {
+      // Data stays fixed; a side fixed by the active set was released from saved bounds [0, .].
+      if (saved_x_lower_[t.variable] == saved_x_upper_[t.variable]) continue;
+      descent = std::max(descent, -lagrangian_gradient[t.variable] / scale);
+    }
+  }
+  return descent;
 }
 
 double NlpAssembly::complementarityResidual(const double* x) const {

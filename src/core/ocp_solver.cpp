@@ -20,13 +20,20 @@ std::string resultMessage(const MpccReport& report, const Trajectory& trajectory
   return report.message + "; " + describeUnresolvedSwitches(trajectory.unresolved_switches);
 }
 
+HomotopyOptions guessHomotopy(const OcpOptions& options) {
+  HomotopyOptions homotopy = options.homotopy;
+  homotopy.early_polish_sigma = options.guess_early_polish_sigma;
+  return homotopy;
+}
+
 }  // namespace
 
 OcpSolver::OcpSolver(OcpDefinition ocp, OcpOptions options)
     : options_(std::move(options)),
       discretization_(discretize(ocp, options_.discretization)),
       solver_(options_.homotopy),
-      fixed_grid_solver_(fixedGridHomotopy(options_)) {
+      fixed_grid_solver_(fixedGridHomotopy(options_)),
+      guess_solver_(guessHomotopy(options_)) {
   if (discretization_->stepsAreFree() && options_.fixed_grid_until_sigma > 0.0) {
     DiscretizationOptions fixed = options_.discretization;
     fixed.switch_detection = false;
@@ -66,6 +73,12 @@ OcpSolution OcpSolver::solve(const OcpSolution& previous) {
     throw std::invalid_argument("OcpSolver: the warm start comes from a different discretisation");
   }
   return finish(solver_.solve(discretization_->nlp(), previous.report, options_.warm_start_sigma),
+                *discretization_);
+}
+
+OcpSolution OcpSolver::solve(const TrajectoryGuess& guess) {
+  return finish(guess_solver_.solve(discretization_->nlp(), discretization_->guessFrom(guess),
+                                    options_.guess_sigma),
                 *discretization_);
 }
 

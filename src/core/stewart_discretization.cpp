@@ -356,6 +356,16 @@ std::vector<double> StewartDiscretization::constantGuess(
   return x;
 }
 
+std::vector<double> StewartDiscretization::guessFrom(const TrajectoryGuess& guess) const {
+  std::vector<double> x = nlp_.initialGuess();  // holds the start state
+  guessGridPoints(nlp_, grid_, tableau_, nominal_step_, nx_, nu_, guess, x);
+  for (const Element& element : elements_) {
+    for (const StagePoint& point : element.stages) setModeOfState(x, point);
+  }
+  completeBoundaryPoints(x);
+  return x;
+}
+
 std::vector<double> StewartDiscretization::translatedGuess(
     const std::vector<double>& previous_solution) const {
   if (static_cast<int>(previous_solution.size()) != nlp_.numVariables()) {

@@ -9,6 +9,7 @@
 #include "fesd_trajopt/core/nlp_assembly.h"
 #include "fesd_trajopt/core/ocp_definition.h"
 #include "fesd_trajopt/core/trajectory.h"
+#include "fesd_trajopt/core/trajectory_guess.h"
 
 namespace fesd {
 
@@ -45,6 +46,11 @@ void fixControl(NlpAssembly& nlp, const CollocationGrid& grid, int interval,
 void guessControls(const NlpAssembly& nlp, const CollocationGrid& grid, int nu,
                    const std::vector<Eigen::VectorXd>& controls, std::vector<double>& x);
 
+/// The states of `guess` at the stage and end points of the nominal grid (every step h0, the
+/// stages at the tableau's nodes), nominal steps and the guess's controls (guessControls).
+void guessGridPoints(const NlpAssembly& nlp, const CollocationGrid& grid,
+                     const ButcherTableau& tableau, double h0, int nx, int nu,
+                     const TrajectoryGuess& guess, std::vector<double>& x);
 /// sum of the steps of each control interval = its length.
 void addIntervalLengthRows(NlpAssembly& nlp, const CollocationGrid& grid, const OcpDefinition& ocp);
 /// rho * sigma * ((h_n - h_{n-1}) / h0)^2 in the objective (a term vanishing with sigma) that

@@ -8,6 +8,7 @@
 #include "fesd_trajopt/core/nlp_assembly.h"
 #include "fesd_trajopt/core/ocp_definition.h"
 #include "fesd_trajopt/core/trajectory.h"
+#include "fesd_trajopt/core/trajectory_guess.h"
 
 namespace fesd {
 
@@ -36,6 +37,9 @@ class Discretization {
   /// A previous, equally structured solution moved to the current start state.
   virtual std::vector<double> translatedGuess(
       const std::vector<double>& previous_solution) const = 0;
+  /// The guess's states, multipliers and controls (clipped to their bounds) at the stage points
+  /// of the nominal grid; the rest consistent with them.
+  virtual std::vector<double> guessFrom(const TrajectoryGuess& guess) const = 0;
   /// A solution of a discretisation of the same OCP on the same grid (e.g. the standard
   /// method's) as a guess for this one.
   virtual std::vector<double> adoptedGuess(const Discretization& other,

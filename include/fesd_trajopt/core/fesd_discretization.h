@@ -14,8 +14,10 @@ namespace fesd {
 ///  - Runge-Kutta equations of every finite element (eq. 6a),
 ///  - lifted constraint values s = c(x) at every stage point and s >= 0, lambda >= 0,
 ///  - complementarity: per stage (standard) or cross-complementarity (eq. 8) in the chosen form,
-///  - step equilibration (Sec. III-C) with nu = (sum_c B v sum_c F) ^ (sum_l B v sum_l F), max
-///    through the KKT conditions of its LP, OR over the constraints, and the big-M bound,
+///  - step equilibration (Sec. III-C): imposed exactly by active-set polishing (Table I: equal
+///    steps at every boundary without a switch) and, in the relaxed NLPs, guided by a vanishing
+///    step regulariser; or (kBigM) the paper's nu = (sum_c B v sum_c F) ^ (sum_l B v sum_l F),
+///    max through the KKT conditions of its LP, OR over the constraints, and the big-M bound,
 ///  - sum of steps = interval length and step bounds,
 ///  - costs by the RK quadrature, control/state bounds, path and terminal constraints.
 /// The start state and the controls are NLP variables, fixed or bounded through their bounds,
@@ -52,6 +54,9 @@ class FesdDiscretization : public Discretization {
   /// controls (clipped to their bounds; empty means 0); auxiliaries made consistent.
   std::vector<double> constantGuess(
       const std::vector<Eigen::VectorXd>& controls = {}) const override;
+  /// States, lambda (clipped at 0) and controls of the guess on the nominal grid; s = c(x),
+  /// clipped at 0 where a planned path grazes into a constraint.
+  std::vector<double> guessFrom(const TrajectoryGuess& guess) const override;
   /// The solution of a previous, equally structured problem moved to the current start state:
   /// every stage state shifted by (start - old start), c(x) re-evaluated, lambda and steps kept.
   /// A simulation step's guess from the step before (smooth motion repeats its increments).
@@ -85,6 +90,8 @@ class FesdDiscretization : public Discretization {
   struct BoundarySums {
     LinearExpression lambda_backward, lambda_forward, c_backward, c_forward;
   };
+  /// One boundary between elements of a control interval: its sums and, with kBigM, the
+  /// auxiliaries of the paper's formulation (empty, any_switch = -1, otherwise).
   struct EquilibrationAuxiliaries {
     int previous_element, element;
     std::vector<BoundarySums> sums;                           ///< per constraint
@@ -97,13 +104,14 @@ class FesdDiscretization : public Discretization {
   void buildDynamics();
   void buildComplementarity();
   void buildStepEquilibration();
+  /// The paper's auxiliaries (pi, max, nu, OR) and big-M rows at every boundary (kBigM).
+  void addBigMEquilibration();
   /// The polishing counterpart of step equilibration (NlpAssembly's active-set hook): with the
   /// complementarity sides fixed, nu > 0 exactly when some c and some lambda in a boundary's
-  /// sums are nonzero (Table I). The auxiliaries' inequalities would pin them without interior,
-  /// so they are frozen and replaced by h_{n-1} = h_n at the boundaries without a switch.
+  /// sums are nonzero (Table I); h_{n-1} = h_n at the boundaries without a switch. The kBigM
+  /// auxiliaries' inequalities would pin them without interior, so they are frozen.
   void equilibrateActiveSet(const double* x);
   void addLifting(const StagePoint& point);
-  LinearExpression rangeExpression(int first, int count, int stride) const;
   const StagePoint& previousPoint(int element) const;
   std::vector<int> velocityInputs(int element, int stage) const;
 

@@ -4,6 +4,7 @@
 
 #include "fesd_trajopt/core/disc_scene.h"
 #include "fesd_trajopt/core/ocp_definition.h"
+#include "fesd_trajopt/core/push_plan.h"
 #include "fesd_trajopt/core/scene_task.h"
 
 namespace fesd {
@@ -21,6 +22,8 @@ SceneTask task(int num_intervals);
 /// pruning (decidePairs) finds the same: the workspace bounds keep the actuators apart.
 std::vector<ContactPair> contactPairs();
 OcpDefinition ocp(int num_intervals);
+/// The push plan of the task (planPushes): the first guess the showcase is solved from.
+PushPlan plan(int num_intervals);
 Eigen::VectorXd targetState();
 Eigen::Vector2d objectGoal();  ///< (0, 10)
 

@@ -72,6 +72,17 @@ struct HomotopyOptions {
   /// is kept.
   bool polish_active_set = true;
   int polish_attempts = 3;
+  /// Early exit: once two converged relaxed NLPs in a row with sigma <= this identify the same
+  /// active set, it is polished (once); a polished point that meets the complementarity
+  /// tolerance and is B-stationary (RelaxedMpcc::biactiveDescent <= stationarity_tolerance) ends
+  /// the homotopy. The tighter relaxations after it would only re-derive the same active set.
+  /// 0 (default) polishes only after the homotopy has converged: on the test suite's Filippov
+  /// OCP (56) and a tiny-scale simulation, early polishing settled on other (worse) switch
+  /// placements than the full homotopy.
+  double early_polish_sigma = 0.0;
+  /// Largest descent (relative to the objective's gradient) that a biactive pair's fixed side
+  /// may offer at an accepted early or warm-start polished point.
+  double stationarity_tolerance = 1e-6;
   /// A homotopy that fails later still gets a polishing attempt from its best converged
   /// relaxed NLP, if that one's complementarity residual is at most this: polishing needs the
   /// right active set, not a tiny sigma.
@@ -119,6 +130,9 @@ struct MpccReport {
   double complementarity_residual = 0.0;
   int iterations = 0;     ///< Ipopt iterations over all homotopy steps
   bool polished = false;  ///< the solution comes from the active-set polishing solve
+  /// A polished solution is B-stationary: no biactive pair offers descent (always true for
+  /// early and warm-start polishing, which require it).
+  bool b_stationary = false;
   double wall_seconds = 0.0, cpu_seconds = 0.0;
   double ipopt_seconds = 0.0;  ///< wall time inside Ipopt itself (solve time minus evaluations)
   double evaluation_seconds = 0.0;  ///< wall time inside our function evaluations

@@ -97,8 +97,10 @@ class NlpAssembly : public RelaxedMpcc {
   }
   const std::vector<int>& complementarityRows() const override { return complementarity_rows_; }
   double complementarityResidual(const double* x) const override;
+  std::vector<bool> identifyActiveSet(const double* x) const override;
   bool fixActiveSet(const double* x, int flip = -1) override;
   void releaseActiveSet() override;
+  double biactiveDescent(const double* x, const double* multipliers) const override;
 
  private:
   struct LinearEntry {
@@ -122,6 +124,14 @@ class NlpAssembly : public RelaxedMpcc {
     std::vector<int> hessian_slots;         // per Hessian entry
     std::vector<int> scale_hessian_slots;   // per input (-1 when F does not depend on it)
   };
+  /// The active set fixActiveSet would fix at x: per pair whether the left side is the zero
+  /// one, and how ambiguous the choice is (min/max of the two sides; 0 when data decides).
+  struct ActiveSetChoice {
+    bool valid = true;  ///< false when some pair has fixed nonzero data on both sides
+    std::vector<bool> left_is_zero;
+    std::vector<double> ambiguity;
+  };
+  ActiveSetChoice chooseActiveSet(const double* x) const;
   static double evaluateLinear(const LinearExpression& expression, const double* x);
   void checkNotFinalized() const;
   void checkFinalized() const;
@@ -145,6 +155,8 @@ class NlpAssembly : public RelaxedMpcc {
   bool finalized_ = false;
   /// Bounds before fixActiveSet (empty: not fixed).
   std::vector<double> saved_x_lower_, saved_x_upper_, saved_g_lower_, saved_g_upper_;
+  /// Per pair while an active set is fixed: whether its left side is the one fixed to zero.
+  std::vector<bool> fixed_left_;
   std::function<void(const double* x)> hook_;
   // Scratch buffers sized to the largest function term (evaluation is single-threaded per NLP).
   mutable std::vector<double> scratch_values_, scratch_jacobian_, scratch_hessian_,

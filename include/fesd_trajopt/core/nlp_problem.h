@@ -47,8 +47,17 @@ class RelaxedMpcc : public NlpProblem {
   /// zero side is not a sum of nonnegative free variables, when both sides of a pair hold fixed
   /// nonzero terms, or when there is no such ambiguous pair to flip.
   virtual bool fixActiveSet(const double* x, int flip = -1) = 0;
+  /// The choice fixActiveSet(x) makes: per pair, whether its left side is the one fixed to zero;
+  /// empty when fixActiveSet would refuse.
+  virtual std::vector<bool> identifyActiveSet(const double* x) const = 0;
   /// Undoes fixActiveSet.
   virtual void releaseActiveSet() = 0;
+  /// While an active set is fixed: how far a solution (x and its constraint multipliers, for the
+  /// Lagrangian f + multipliers^T g) is from B-stationarity of the MPCC. At a pair whose free
+  /// side vanishes too (biactive), releasing the fixed side is feasible; its variables must not
+  /// offer descent, i.e. d(Lagrangian)/dx_v >= 0 for each of them. Returns the largest
+  /// -d(Lagrangian)/dx_v over those variables, relative to max(1, |grad f|_inf); 0 if none.
+  virtual double biactiveDescent(const double* x, const double* multipliers) const = 0;
   /// Largest violation of the complementarity constraints at x (0 when they hold exactly).
   virtual double complementarityResidual(const double* x) const = 0;
 };

@@ -80,6 +80,9 @@ class StewartDiscretization : public Discretization {
 
   std::vector<double> constantGuess(
       const std::vector<Eigen::VectorXd>& controls = {}) const override;
+  /// The guess's states and controls on the nominal grid, the modes of those states; its
+  /// multipliers are not used.
+  std::vector<double> guessFrom(const TrajectoryGuess& guess) const override;
   std::vector<double> translatedGuess(const std::vector<double>& previous_solution) const override;
   std::vector<double> adoptedGuess(const Discretization& other,
                                    const std::vector<double>& solution) const override;
