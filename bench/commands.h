@@ -14,5 +14,6 @@ int ocpManipulation(const Arguments& args);
 int ocpAccuracy(const Arguments& args);
 int scaling(const Arguments& args);
 int homotopyFailures(const Arguments& args);
+int simulationSweep(const Arguments& args);
 
 }  // namespace fesd_bench

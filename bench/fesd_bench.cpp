@@ -57,6 +57,13 @@ const std::map<std::string, Command>& commands() {
         "    --methods=fesd,standard --family=radau|gauss --equilibration=indicator|tanh|none\n"
         "    --budget=120 (s per solve) --reference-stages=4 --reference-elements=12\n"
         "    --print-steps (element lengths and switch indicators eta per run)"}},
+      {"simulation-sweep",
+       {fesd_bench::simulationSweep,
+        "Seeded random push scenes (2-4 discs or spheres, 2-D and 3-D, walls; first contact\n"
+        "    often within 1 % of a step's start or end) simulated on every grid: status, terminal\n"
+        "    error against the closed form or a fine FESD run, outlier grids (error > 100x both\n"
+        "    neighbours'), CSV and summary. --first-seed=0 --scenes=24 --stages=1,2,3,4\n"
+        "    --steps=4,5,6,8,10,12,16,20,24,32,40 --elements=2 --reference-steps=161 --budget=60"}},
       {"sign-ocp",
        {fesd_bench::signOcp,
         "OCP (56) (seed 001): x0 found from forward-simulation guesses, FESD vs standard, with a\n"

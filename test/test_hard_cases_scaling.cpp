@@ -125,13 +125,22 @@ TEST(HardCaseScaling, StepBoundsTightAndLoose) {
     EXPECT_NEAR(run.result.trajectory.switches[0].time, 1.0, 1e-10);
   }
   // T = 2.9: t = 1 is 0.275 into the second step of 0.725, at 0.76 h0: out of reach for
-  // gamma_h = 0.1. The step cannot be solved; the integrator stops there and reports it.
-  const auto tight = hard_cases::simulateTwice(model, hard_cases::fesdOptions(2, 2, 0.1), start,
-                                               2.9, 4, {hard_cases::kCornerVelocity});
+  // gamma_h = 0.1. The step cannot be solved as one: without splitting the integrator stops
+  // there and reports it; by default it solves the step in halves, where t = 1 is reachable.
+  fesd::SimulationOptions unsplit = hard_cases::fesdOptions(2, 2, 0.1);
+  unsplit.max_step_splits = 0;
+  const auto tight =
+      hard_cases::simulateTwice(model, unsplit, start, 2.9, 4, {hard_cases::kCornerVelocity});
   EXPECT_TRUE(tight.identical);
   EXPECT_NE(tight.result.status, fesd::SolveStatus::kSuccess);
   EXPECT_EQ(tight.result.completed_steps, 1);
   EXPECT_NE(tight.result.message.find("step 1 of 4"), std::string::npos) << tight.result.message;
+  const auto split = hard_cases::simulateTwice(model, hard_cases::fesdOptions(2, 2, 0.1), start,
+                                               2.9, 4, {hard_cases::kCornerVelocity});
+  ASSERT_TRUE(isHealthy(split, 1e-9));
+  EXPECT_EQ(split.result.split_steps, 1);
+  EXPECT_LT(hard_cases::maxGridError(split.result.trajectory, exact), 1e-10);
+  EXPECT_NEAR(split.result.trajectory.switches.at(0).time, 1.0, 1e-10);
   const auto loose = hard_cases::simulateTwice(model, hard_cases::fesdOptions(2, 2, 1.0), start,
                                                2.9, 4, {hard_cases::kCornerVelocity});
   ASSERT_TRUE(isHealthy(loose, 1e-9));

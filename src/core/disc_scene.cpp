@@ -345,10 +345,27 @@ std::shared_ptr<const DcsModel> DiscScene::model(const std::vector<ContactPair>&
     }
   }
   const int nc = static_cast<int>(pairs.size());
+  // |grad c| on the boundary: 2 (R_i + R_j) for a pair of discs, 1 for a wall.
+  Eigen::VectorXd scales(nc);
+  for (int k = 0; k < nc; ++k) {
+    const ContactPair& pair = pairs[k];
+    const double radius = bodies_.at(pair.body).radius;
+    switch (pair.kind) {
+      case ContactPair::Kind::kBody:
+        scales(k) = 2.0 * (radius + bodies_.at(pair.other).radius);
+        break;
+      case ContactPair::Kind::kObstacle:
+        scales(k) = 2.0 * (radius + obstacles_.at(pair.other).radius);
+        break;
+      case ContactPair::Kind::kWall:
+        scales(k) = 1.0;
+        break;
+    }
+  }
   return std::make_shared<DcsModel>(
       stateSize(), controlSize(), nc,
       std::make_shared<SceneVelocity>(stateSize(), actuation, gradients, controlSize()),
-      std::make_shared<SceneConstraints>(stateSize(), gradients), "disc_scene");
+      std::make_shared<SceneConstraints>(stateSize(), gradients), "disc_scene", scales);
 }
 
 }  // namespace fesd

@@ -52,6 +52,7 @@ void FesdDiscretization::buildVariables() {
   // lambda just before the start (data: 0, or the end of a previous simulation step). It only
   // enters the step-equilibration sums.
   start_.lambda = nlp_.addVariables(nc_, 0.0, 0.0);
+  carried_lambda_ = nlp_.addVariables(nc_, 0.0, 0.0);
   setInitialState(ocp_.initial_state);
   const double step_lower =
       steps_free_ ? (1.0 - options_.step_bound) * nominal_step_ : nominal_step_;
@@ -132,9 +133,15 @@ void FesdDiscretization::buildComplementarity() {
   const int ns = tableau_.stages;
   for (int e = 0; e < numElements(); ++e) {
     for (int k = 0; k < nc_; ++k) {
+      // Decisions compare c / |grad c| (distance to the boundary) with h0 lambda |grad c| (the
+      // distance the force moves in an element): at R = 1e-3 raw c (~1e-7) looked smaller than
+      // a free pair's relaxed lambda (~1e-3), and polishing fixed contacts that were not there.
+      const double scale = model_->constraintScales()(k);
+      const double c_weight = 1.0 / scale, lambda_weight = nominal_step_ * scale;
       if (!steps_free_) {
         for (const StagePoint& point : stages_[e]) {
-          nlp_.addComplementarity({{point.s + k, 1.0}}, {{point.lambda + k, 1.0}});
+          nlp_.addComplementarity({{point.s + k, 1.0}}, {{point.lambda + k, 1.0}}, c_weight,
+                                  lambda_weight);
         }
         continue;
       }
@@ -150,14 +157,20 @@ void FesdDiscretization::buildComplementarity() {
         lambda_side.push_back({stages_[e][i].lambda + k, 1.0});
       }
       if (previous_lambda) lambda_side.push_back({previous.lambda + k, 1.0});
+      if (e == 0) lambda_side.push_back({carried_lambda_ + k, 1.0});
       if (options_.cross_complementarity == CrossComplementarity::kElementSums) {
-        nlp_.addComplementarity(c_side, lambda_side);
+        nlp_.addComplementarity(c_side, lambda_side, c_weight, lambda_weight);
         continue;
       }
       for (size_t a = 0; a < c_side.size(); ++a) {
         for (size_t b = 0; b < lambda_side.size(); ++b) {
-          const bool both_previous = a == 0 && previous_lambda && b + 1 == lambda_side.size();
-          if (!both_previous) nlp_.addComplementarity({c_side[a]}, {lambda_side[b]});
+          // The previous point's c against the previous point's lambda (or the carried one):
+          // one point, no cross pair.
+          const bool both_previous =
+              a == 0 && (previous_lambda || e == 0) && b + 1 == lambda_side.size();
+          if (!both_previous) {
+            nlp_.addComplementarity({c_side[a]}, {lambda_side[b]}, c_weight, lambda_weight);
+          }
         }
       }
     }
@@ -330,8 +343,17 @@ void FesdDiscretization::setInitialMultipliers(const Eigen::VectorXd& lambda0) {
   }
 }
 
-void FesdDiscretization::continueFrom(const Trajectory& previous) {
-  setInitialMultipliers(previous.elements.back().stage_multipliers.rightCols(1));
+void FesdDiscretization::continueFrom(const Trajectory& previous, bool same_dynamics) {
+  const Eigen::VectorXd lambda = previous.elements.back().stage_multipliers.rightCols(1);
+  setInitialMultipliers(lambda);
+  for (int k = 0; k < nc_; ++k) {
+    // Only a pair in contact at the start carries its force: c0 lambda0 > 0 would make the
+    // product row of the first element infeasible.
+    const bool in_contact = nlp_.initialGuess()[start_.s + k] <= NlpAssembly::kNegligibleFixedValue;
+    const double carried = same_dynamics && in_contact ? std::max(lambda(k), 0.0) : 0.0;
+    nlp_.setVariableBounds(carried_lambda_ + k, carried, carried);
+    nlp_.initialGuess()[carried_lambda_ + k] = carried;
+  }
 }
 
 void FesdDiscretization::fixControl(int interval, const Eigen::VectorXd& u) {

@@ -125,13 +125,22 @@ IpoptSession::SolveSettings initialSettings(const HomotopyOptions& options,
 }
 
 /// The polishing stage: keeps `report` as it is unless a polished NLP converges (and, if
-/// `require_stationarity`, is B-stationary). Tries the identified active set, then flips the
-/// most ambiguous pairs one at a time, `attempts` solves in all.
+/// `require_stationarity`, is B-stationary). Tries the identified active set; after a failed
+/// solve the pairs it left biactive flipped (RelaxedMpcc::flipBiactivePairs), else the most
+/// ambiguous pairs flipped one at a time; `attempts` solves in all.
 void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& problem,
             const PrimalDualPoint& converged, const IpoptSession::SolveSettings& settings,
             int attempts, bool require_stationarity, MpccReport& report) {
+  // After a failed attempt: its biactive pairs flipped, tried before the next attempt.
+  std::vector<bool> biactive_flipped;
+  int flip = -1;  // the identified active set, then its most ambiguous pairs flipped in turn
   for (int attempt = 0; attempt < attempts; ++attempt) {
-    if (!problem.fixActiveSet(converged.x.data(), attempt - 1)) return;
+    const bool fixed = biactive_flipped.empty()
+                           ? problem.fixActiveSet(converged.x.data(), flip++)
+                           : problem.fixGivenActiveSet(biactive_flipped, converged.x.data());
+    const bool flipped_biactive = !biactive_flipped.empty();
+    biactive_flipped.clear();
+    if (!fixed) return;
     PrimalDualPoint point = converged;
     // The dropped product rows are inactive from now on: their multipliers are zero.
     if (point.has_multipliers) {
@@ -143,6 +152,7 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
         solved && point.has_multipliers
             ? problem.biactiveDescent(point.x.data(), point.constraint_multipliers.data())
             : std::numeric_limits<double>::infinity();
+    if (!solved && !flipped_biactive) biactive_flipped = problem.flipBiactivePairs(point.x.data());
     problem.releaseActiveSet();
     const double residual = problem.complementarityResidual(point.x.data());
     report.history.push_back({0.0, outcome.iterations, residual, outcome.objective,

@@ -60,9 +60,10 @@ void NlpAssembly::addLinear(int row, const LinearExpression& expression) {
   for (const LinearTerm& term : expression) addLinear(row, term.variable, term.coefficient);
 }
 
-int NlpAssembly::addComplementarity(const LinearExpression& left, const LinearExpression& right) {
+int NlpAssembly::addComplementarity(const LinearExpression& left, const LinearExpression& right,
+                                    double left_weight, double right_weight) {
   const int row = addRows(1, -kInfinity, sigma_);
-  complementarities_.push_back({row, left, right, {}, {}, {}});
+  complementarities_.push_back({row, left, right, left_weight, right_weight, {}, {}, {}});
   complementarity_rows_.push_back(row);
   return row;
 }
@@ -355,8 +356,8 @@ NlpAssembly::ActiveSetChoice NlpAssembly::chooseActiveSet(const double* x) const
       choice.valid = false;
       return choice;
     }
-    const double left = evaluateLinear(comp.left, x);
-    const double right = evaluateLinear(comp.right, x);
+    const double left = comp.left_weight * evaluateLinear(comp.left, x);
+    const double right = comp.right_weight * evaluateLinear(comp.right, x);
     choice.left_is_zero[p] = left_can_vanish && (left <= right || !right_can_vanish);
     const double larger = std::max(std::fabs(left), std::fabs(right));
     const bool decided = !left_can_vanish || !right_can_vanish || larger == 0.0;
@@ -380,17 +381,28 @@ bool NlpAssembly::fixActiveSet(const double* x, int flip) {
   if (flip >= 0) {
     std::vector<int> order(pairs);
     for (int p = 0; p < pairs; ++p) order[p] = p;
-    std::sort(order.begin(), order.end(),
-              [&](int a, int b) { return ambiguity[a] > ambiguity[b]; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return ambiguity[a] > ambiguity[b]; });
     // Only pairs whose sides are comparable are worth a retry; the rest are decided.
     if (flip >= pairs || ambiguity[order[flip]] < 1e-3) return false;
     left_is_zero[order[flip]] = !left_is_zero[order[flip]];
   }
+  return fixGivenActiveSet(left_is_zero, x);
+}
+
+bool NlpAssembly::fixGivenActiveSet(const std::vector<bool>& left_is_zero, const double* x) {
+  releaseActiveSet();
+  const int pairs = static_cast<int>(complementarities_.size());
+  if (static_cast<int>(left_is_zero.size()) != pairs) return false;
   std::vector<int> to_fix;
   for (int p = 0; p < pairs; ++p) {
     const Complementarity& comp = complementarities_[p];
     for (const LinearTerm& t : left_is_zero[p] ? comp.left : comp.right) {
-      if (x_lower_[t.variable] == x_upper_[t.variable]) continue;  // data: already fixed
+      if (x_lower_[t.variable] == x_upper_[t.variable]) {
+        // Data: it must be (negligibly close to) zero to be the zero side.
+        if (std::fabs(x_lower_[t.variable]) > kNegligibleFixedValue) return false;
+        continue;
+      }
       if (t.coefficient <= 0.0 || x_lower_[t.variable] != 0.0) return false;
       to_fix.push_back(t.variable);
     }
@@ -404,6 +416,27 @@ bool NlpAssembly::fixActiveSet(const double* x, int flip) {
   fixed_left_ = left_is_zero;
   if (hook_) hook_(x);
   return true;
+}
+
+std::vector<bool> NlpAssembly::flipBiactivePairs(const double* x) const {
+  if (saved_x_lower_.empty()) throw std::logic_error("flipBiactivePairs: no active set is fixed");
+  double largest = 0.0;
+  std::vector<double> free_sides(complementarities_.size());
+  for (size_t p = 0; p < complementarities_.size(); ++p) {
+    const Complementarity& comp = complementarities_[p];
+    free_sides[p] = fixed_left_[p] ? comp.right_weight * evaluateLinear(comp.right, x)
+                                   : comp.left_weight * evaluateLinear(comp.left, x);
+    largest = std::max(largest, std::fabs(free_sides[p]));
+  }
+  std::vector<bool> flipped = fixed_left_;
+  bool any = false;
+  for (size_t p = 0; p < complementarities_.size(); ++p) {
+    if (free_sides[p] <= 1e-7 * largest) {
+      flipped[p] = !flipped[p];
+      any = true;
+    }
+  }
+  return any ? flipped : std::vector<bool>();
 }
 
 void NlpAssembly::releaseActiveSet() {

@@ -41,13 +41,33 @@ OcpSolver::OcpSolver(OcpDefinition ocp, OcpOptions options)
   }
 }
 
+std::string startName(OcpStart start) {
+  switch (start) {
+    case OcpStart::kConstant:
+      return "constant";
+    case OcpStart::kGuess:
+      return "guess";
+    case OcpStart::kConstantAfterGuess:
+      return "constant after a failed solve from the guess";
+    case OcpStart::kPrevious:
+      return "previous solution";
+  }
+  return "unknown";
+}
+
 OcpSolution OcpSolver::solve() {
+  return solveFromConstant(options_.homotopy.wall_time_budget);
+}
+
+OcpSolution OcpSolver::solveFromConstant(double wall_time_budget) {
   if (!fixed_grid_) {
-    return finish(solver_.solve(discretization_->nlp(), discretization_->constantGuess()),
+    return finish(solver_.solve(discretization_->nlp(), discretization_->constantGuess(), -1.0,
+                                std::max(0.0, wall_time_budget)),
                   *discretization_);
   }
-  MpccReport fixed = fixed_grid_solver_.solve(fixed_grid_->nlp(), fixed_grid_->constantGuess());
-  const double remaining = options_.homotopy.wall_time_budget - fixed.wall_seconds;
+  MpccReport fixed = fixed_grid_solver_.solve(fixed_grid_->nlp(), fixed_grid_->constantGuess(),
+                                              -1.0, std::max(0.0, wall_time_budget));
+  const double remaining = wall_time_budget - fixed.wall_seconds;
   if (fixed.status == SolveStatus::kTimeout || fixed.history.empty()) {
     return finish(std::move(fixed), *fixed_grid_);
   }
@@ -72,14 +92,31 @@ OcpSolution OcpSolver::solve(const OcpSolution& previous) {
   if (static_cast<int>(previous.report.solution.size()) != discretization_->nlp().numVariables()) {
     throw std::invalid_argument("OcpSolver: the warm start comes from a different discretisation");
   }
-  return finish(solver_.solve(discretization_->nlp(), previous.report, options_.warm_start_sigma),
-                *discretization_);
+  OcpSolution solution =
+      finish(solver_.solve(discretization_->nlp(), previous.report, options_.warm_start_sigma),
+             *discretization_);
+  solution.start = OcpStart::kPrevious;
+  return solution;
 }
 
 OcpSolution OcpSolver::solve(const TrajectoryGuess& guess) {
-  return finish(guess_solver_.solve(discretization_->nlp(), discretization_->guessFrom(guess),
-                                    options_.guess_sigma),
-                *discretization_);
+  OcpSolution from_guess =
+      finish(guess_solver_.solve(discretization_->nlp(), discretization_->guessFrom(guess),
+                                 options_.guess_sigma),
+             *discretization_);
+  from_guess.start = OcpStart::kGuess;
+  if (from_guess.status == SolveStatus::kSuccess || from_guess.status == SolveStatus::kTimeout) {
+    return from_guess;
+  }
+  OcpSolution solution =
+      solveFromConstant(options_.homotopy.wall_time_budget - from_guess.report.wall_seconds);
+  solution.start = OcpStart::kConstantAfterGuess;
+  solution.report.history.insert(solution.report.history.begin(), from_guess.report.history.begin(),
+                                 from_guess.report.history.end());
+  solution.report.addEffort(from_guess.report);
+  solution.message = "from the guess: " + statusName(from_guess.status) +
+                     "; then from the constant start: " + solution.message;
+  return solution;
 }
 
 OcpSolution OcpSolver::finish(MpccReport report, const Discretization& source) const {

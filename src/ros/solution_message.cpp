@@ -92,6 +92,7 @@ void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& repo
   s.ipopt_time = report.ipopt_seconds;
   s.evaluation_time = report.evaluation_seconds;
   s.polished = report.polished;
+  s.b_stationary = report.b_stationary;
   for (const fesd::HomotopyStep& step : report.history) {
     s.sigma.push_back(step.sigma);
     s.iterations.push_back(step.iterations);

@@ -8,6 +8,7 @@
 #include "fesd_trajopt/core/fesd_integrator.h"
 #include "fesd_trajopt/core/moving_part.h"
 #include "fesd_trajopt/core/ocp_solver.h"
+#include "fesd_trajopt/core/push_plan.h"
 #include "fesd_trajopt/core/stopwatch.h"
 #include "scene_request.h"
 #include "solution_message.h"
@@ -154,10 +155,15 @@ void TrajoptNode::handleSolve(const fesd_trajopt::SolveTrajectory::Request& requ
                   << task.num_intervals << " intervals x " << grid.elements
                   << " elements, n_s = " << grid.stages);
   fesd::OcpSolver solver(ocp, options);
-  const fesd::OcpSolution solution = solver.solve();
+  // The push plan is a deterministic first guess: the same request gives the same plan on every
+  // machine, whatever its BLAS (a constant start did not).
+  const fesd::OcpSolution solution = solver.solve(fesd::planPushes(part.task, part.modelled).guess);
   response.solution = sceneSolution(
       task, decisions, fesd::fullSceneTrajectory(task, part, solution.trajectory), solution.report);
   response.solution.message = solution.message;  // with the warning on unresolved switches
+  response.solution.statistics.start = solution.start == fesd::OcpStart::kGuess
+                                           ? "push plan"
+                                           : "constant after a failed solve from the push plan";
   const fesd::NlpAssembly& nlp = solver.discretization().nlp();
   response.solution.statistics.nlp_variables = nlp.numVariables();
   response.solution.statistics.nlp_constraints = nlp.numConstraints();

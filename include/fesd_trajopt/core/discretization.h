@@ -26,7 +26,9 @@ class Discretization {
   /// Fixes the start state.
   virtual void setInitialState(const Eigen::VectorXd& x0) = 0;
   /// Takes over what the next simulation step needs from the end of the previous one.
-  virtual void continueFrom(const Trajectory& previous) = 0;
+  /// `same_dynamics`: the right-hand side continues unchanged into this step (same control), so
+  /// a contact force cannot jump down at its start (seed 000, Proposition 2).
+  virtual void continueFrom(const Trajectory& previous, bool same_dynamics) = 0;
   /// Fixes the control of interval k to u (simulation).
   virtual void fixControl(int interval, const Eigen::VectorXd& u) = 0;
 

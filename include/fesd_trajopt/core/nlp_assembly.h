@@ -53,7 +53,10 @@ class NlpAssembly : public RelaxedMpcc {
   void addLinear(int row, int variable, double coefficient);
   void addLinear(int row, const LinearExpression& expression);
   /// Adds the row (left^T x)(right^T x) <= sigma, counted as a complementarity constraint.
-  int addComplementarity(const LinearExpression& left, const LinearExpression& right);
+  /// Active-set decisions compare the sides as left_weight left^T x against
+  /// right_weight right^T x (the weights bring them to one unit).
+  int addComplementarity(const LinearExpression& left, const LinearExpression& right,
+                         double left_weight = 1.0, double right_weight = 1.0);
   /// Adds sum_targets coefficient * x[scale_variable] * F(x[inputs]) to rows
   /// [target_row, target_row + F.outputSize()) or to the objective (target_row = kObjective).
   /// scale_variable < 0 means a scale of one.
@@ -99,6 +102,8 @@ class NlpAssembly : public RelaxedMpcc {
   double complementarityResidual(const double* x) const override;
   std::vector<bool> identifyActiveSet(const double* x) const override;
   bool fixActiveSet(const double* x, int flip = -1) override;
+  bool fixGivenActiveSet(const std::vector<bool>& left_is_zero, const double* x) override;
+  std::vector<bool> flipBiactivePairs(const double* x) const override;
   void releaseActiveSet() override;
   double biactiveDescent(const double* x, const double* multipliers) const override;
 
@@ -111,6 +116,7 @@ class NlpAssembly : public RelaxedMpcc {
   struct Complementarity {
     int row;
     LinearExpression left, right;
+    double left_weight, right_weight;
     std::vector<int> left_slots, right_slots;  // Jacobian
     std::vector<int> pair_slots;               // Hessian, left-major
   };

@@ -50,6 +50,14 @@ class RelaxedMpcc : public NlpProblem {
   /// The choice fixActiveSet(x) makes: per pair, whether its left side is the one fixed to zero;
   /// empty when fixActiveSet would refuse.
   virtual std::vector<bool> identifyActiveSet(const double* x) const = 0;
+  /// fixActiveSet with the choice given (per pair: the left side is the zero one); x is the
+  /// point the active-set hook sees. False (nothing changed) when a zero side holds nonzero data.
+  virtual bool fixGivenActiveSet(const std::vector<bool>& left_is_zero, const double* x) = 0;
+  /// While an active set is fixed: the same choice with every pair flipped whose free side is
+  /// (nearly) zero at x too, e.g. the last point of a polishing solve that failed because a
+  /// fixed contact needed a negative force (a release just before a step's end: the solve
+  /// leaves lambda at its bound). Empty when no pair is biactive.
+  virtual std::vector<bool> flipBiactivePairs(const double* x) const = 0;
   /// Undoes fixActiveSet.
   virtual void releaseActiveSet() = 0;
   /// While an active set is fixed: how far a solution (x and its constraint multipliers, for the

@@ -44,8 +44,18 @@ struct OcpOptions {
   double penetration_tolerance = kDefaultPenetrationTolerance;
 };
 
+/// Where a solve started.
+enum class OcpStart {
+  kConstant,            ///< every state at x0, controls 0 (solve())
+  kGuess,               ///< a TrajectoryGuess (solve(guess))
+  kConstantAfterGuess,  ///< the solve from the guess failed; then from the constant start
+  kPrevious,            ///< a previous solution (solve(previous))
+};
+std::string startName(OcpStart start);
+
 struct OcpSolution {
   SolveStatus status = SolveStatus::kSolverError;
+  OcpStart start = OcpStart::kConstant;
   std::string message;  ///< the solver's, and a warning on unresolved switches
   /// Per element: interval, start time, h, stage states, lambda, c; per interval: u; switches.
   /// Its unresolved_switches (switches inside an element) mark a solution that is not fully
@@ -64,13 +74,17 @@ class OcpSolver {
   OcpSolution solve();
   /// Warm start: `previous` must come from a solver with the same discretisation sizes.
   OcpSolution solve(const OcpSolution& previous);
-  /// From a guess of the solution, e.g. a planned motion (OcpOptions::guess_sigma).
+  /// From a guess of the solution, e.g. a planned motion (OcpOptions::guess_sigma). When that
+  /// solve fails (neither success nor timeout), solve() follows within what is left of the
+  /// wall-time budget; the report then holds both.
   OcpSolution solve(const TrajectoryGuess& guess);
 
   const Discretization& discretization() const { return *discretization_; }
   const OcpOptions& options() const { return options_; }
 
  private:
+  /// solve() within a wall-time budget (seconds).
+  OcpSolution solveFromConstant(double wall_time_budget);
   /// The solution read from `report`, whose point belongs to `source`.
   OcpSolution finish(MpccReport report, const Discretization& source) const;
 

@@ -75,7 +75,7 @@ class StewartDiscretization : public Discretization {
   /// Frees the start state within the OCP's initial state bounds again (a free-start OCP).
   void releaseInitialState();
   /// Nothing to take over: lambda at the start follows from the start state (eq. 39).
-  void continueFrom(const Trajectory& previous) override {}
+  void continueFrom(const Trajectory& previous, bool same_dynamics) override {}
   void fixControl(int interval, const Eigen::VectorXd& u) override;
 
   std::vector<double> constantGuess(

@@ -1,0 +1,115 @@
+// The push plan (planPushes), the first guess of scene OCPs: pushing poses, phase times, and a
+// guess whose states, forces and controls are consistent with the scene's dynamics.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "fesd_trajopt/core/manipulation_example.h"
+#include "fesd_trajopt/core/push_plan.h"
+
+namespace {
+
+namespace example = fesd::manipulation_example;
+
+TEST(PushPlan, TheShowcasePushersSitBehindTheObjectWithinTheirWorkspaces) {
+  const fesd::PushPlan plan = example::plan(40);
+  ASSERT_EQ(plan.pushes.size(), 2u);
+  // Straight behind the upward push (0, -3) is outside both workspaces (x <= -2.5, x >= 2.5):
+  // the closest poses on the contact circle of radius 3 keep x at the bound.
+  for (const fesd::PushAssignment& push : plan.pushes) {
+    EXPECT_EQ(push.pushed, 2);
+    EXPECT_NEAR(push.offset.norm(), 3.0, 1e-12);
+    EXPECT_LT(push.offset.y(), 0.0);
+  }
+  EXPECT_LE(plan.pushes[0].offset.x(), -2.5);
+  EXPECT_GE(plan.pushes[1].offset.x(), 2.5);
+  EXPECT_NEAR(plan.pushes[0].offset.x(), -2.5, 0.06);  // within one 1-degree candidate step
+  EXPECT_NEAR(plan.pushes[1].offset.x(), 2.5, 0.06);
+  EXPECT_GT(plan.contact_time, 0.0);
+  EXPECT_LT(plan.contact_time, plan.release_time);
+  EXPECT_LT(plan.release_time, 5.0);
+}
+
+TEST(PushPlan, PhaseTimesHaveTheLeastControlEffort) {
+  // Phase i costs c_i / tau_i with c_i its summed squared control displacements; the least sum
+  // under tau_0 + tau_1 + tau_2 = T has tau_i ~ sqrt(c_i), i.e. the same |u|^2 (summed over
+  // the pushers) in every phase. Check it on the intervals that lie inside one phase.
+  const fesd::PushPlan plan = example::plan(40);
+  const double horizon = example::task(40).horizon;
+  const int intervals = static_cast<int>(plan.guess.controls.size());
+  std::vector<double> squared_speeds[3];
+  for (int k = 0; k < intervals; ++k) {
+    const double begin = k * horizon / intervals, end = (k + 1) * horizon / intervals;
+    const int phase = end <= plan.contact_time                                 ? 0
+                      : begin >= plan.release_time                             ? 2
+                      : begin >= plan.contact_time && end <= plan.release_time ? 1
+                                                                               : -1;
+    if (phase >= 0) squared_speeds[phase].push_back(plan.guess.controls[k].squaredNorm());
+  }
+  const double reference = squared_speeds[1].front();
+  for (const auto& phase : squared_speeds) {
+    ASSERT_FALSE(phase.empty());
+    for (double value : phase) EXPECT_NEAR(value / reference, 1.0, 1e-6);
+  }
+}
+
+TEST(PushPlan, TheGuessMovesTheObjectByTheForcesItCarries) {
+  const fesd::PushPlan plan = example::plan(40);
+  const fesd::SceneTask task = example::task(40);
+  const auto model = task.scene.model(example::contactPairs());
+  const double t1 = plan.contact_time, t2 = plan.release_time;
+  // Start, end of the approach (pushers in contact), end of the push (object at its goal).
+  EXPECT_LT((plan.guess.state(0.0) - task.scene.initialState()).norm(), 1e-12);
+  const Eigen::VectorXd at_release = plan.guess.state(t2);
+  EXPECT_LT((at_release.tail<2>() - example::objectGoal()).norm(), 1e-12);
+  Eigen::VectorXd c(2);
+  model->constraints()->evaluate(at_release.data(), c.data());
+  EXPECT_NEAR(c(0), 0.0, 1e-9);
+  EXPECT_NEAR(c(1), 0.0, 1e-9);
+  // During the push: xdot = f(x, u) + grad c(x) lambda holds for the object (passive) exactly.
+  const double t = 0.5 * (t1 + t2), dt = 1e-6;
+  const Eigen::VectorXd x = plan.guess.state(t);
+  const Eigen::VectorXd velocity = (plan.guess.state(t + dt) - plan.guess.state(t - dt)) / (2 * dt);
+  const Eigen::VectorXd lambda = plan.guess.multipliers(t);
+  ASSERT_EQ(lambda.size(), 2);
+  EXPECT_GT(lambda.minCoeff(), 0.0);
+  Eigen::VectorXd z(6 + 4 + 2), v(6);
+  z << x, Eigen::VectorXd::Zero(4), lambda;
+  model->velocity()->evaluate(z.data(), v.data());
+  EXPECT_LT((v.tail<2>() - velocity.tail<2>()).norm(), 1e-6);
+  // No force before the contact or after the release.
+  EXPECT_EQ(plan.guess.multipliers(0.5 * t1).norm(), 0.0);
+  EXPECT_EQ(plan.guess.multipliers(0.5 * (t2 + 5.0)).norm(), 0.0);
+}
+
+TEST(PushPlan, NothingToPushMovesActuatorsStraightToTheirTargets) {
+  fesd::SceneTask task = example::task(10);
+  task.bodies[2].target_weight = 0.0;  // the object has no goal
+  const fesd::PushPlan plan = fesd::planPushes(task, example::contactPairs());
+  EXPECT_TRUE(plan.pushes.empty());
+  EXPECT_DOUBLE_EQ(plan.contact_time, task.horizon);
+  const Eigen::VectorXd end = plan.guess.state(task.horizon);
+  EXPECT_LT((end.head<2>() - task.bodies[0].target).norm(), 1e-12);
+  EXPECT_LT((end.segment<2>(2) - task.bodies[1].target).norm(), 1e-12);
+  EXPECT_LT((end.tail<2>() - task.scene.bodies()[2].position).norm(), 1e-12);
+}
+
+TEST(PushPlan, PathsStepAroundWhatTheyWouldPassThrough) {
+  // One actuator whose straight path to its target crosses an obstacle's centre.
+  fesd::SceneTask task;
+  task.scene = fesd::DiscScene(2);
+  task.scene.bodies() = {{"pusher", 0.5, Eigen::Vector2d(-3.0, 0.0), true}};
+  task.scene.obstacles() = {{"post", 1.0, Eigen::Vector2d(0.0, 0.0)}};
+  fesd::BodyTask pusher;
+  pusher.target = Eigen::Vector2d(3.0, 0.0);
+  pusher.target_weight = 1.0;
+  task.bodies = {pusher};
+  task.horizon = 2.0;
+  task.num_intervals = 8;
+  const fesd::PushPlan plan = fesd::planPushes(task, {});
+  for (double t = 0.0; t <= 2.0; t += 0.05) {
+    EXPECT_GE(plan.guess.state(t).norm(), 1.5 - 1e-12) << "t = " << t;
+  }
+}
+
+}  // namespace
