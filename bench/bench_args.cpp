@@ -75,6 +75,13 @@ fesd::StepEquilibration stepEquilibration(const Arguments& args) {
   throw std::invalid_argument("--equilibration takes indicator, tanh or none");
 }
 
+fesd::PdsStepEquilibration pdsStepEquilibration(const Arguments& args) {
+  const std::string form = args.text("pds-equilibration", "polishing");
+  if (form == "polishing") return fesd::PdsStepEquilibration::kPolishing;
+  if (form == "big-m") return fesd::PdsStepEquilibration::kBigM;
+  throw std::invalid_argument("--pds-equilibration takes polishing or big-m");
+}
+
 void applyHomotopyArguments(const Arguments& args, fesd::HomotopyOptions& options) {
   options.sigma_initial = args.number("sigma0", options.sigma_initial);
   options.sigma_reduction = args.number("kappa", options.sigma_reduction);

@@ -33,6 +33,9 @@ class Arguments {
 /// --equilibration=indicator|tanh|none: a Filippov system's step equilibration.
 fesd::StepEquilibration stepEquilibration(const Arguments& args);
 
+/// --pds-equilibration=polishing|big-m: how a PDS discretisation imposes step equilibration.
+fesd::PdsStepEquilibration pdsStepEquilibration(const Arguments& args);
+
 /// Homotopy and Ipopt settings from --sigma0, --kappa, --max-steps, --relaxed-tolerance-factor,
 /// --ipopt-tol,
 /// --mu-strategy, --cold-mu-strategy, --ipopt-print-level and --ipopt=name:value,name:value.

@@ -30,14 +30,20 @@ const std::map<std::string, Command>& commands() {
        {fesd_bench::ocpManipulation,
         "The collaborative manipulation OCP (seed 000 Sec. IV-B), key=value per run.\n"
         "    --intervals=30 --elements=3 --stages=2 --fesd=true --repeat=1 --step-bound=0.5\n"
-        "    --fixed-grid-until=1e-2 --resim-stages=n_s+1 --resim-elements=2*elements\n"
-        "    --divergence (per interval: OCP vs fine re-simulation, fine vs twice finer)"}},
+        "    --start=plan|constant (first guess: the push plan, or every state at x0)\n"
+        "    --guess-sigma=1e-2 --guess-early-polish=1e-2 --fixed-grid-until=1e-2 (constant)\n"
+        "    --resim-stages=n_s+1 --resim-elements=2*elements\n"
+        "    --pds-equilibration=polishing|big-m --big-m=1e9 (step equilibration)\n"
+        "    --divergence (per interval: OCP vs fine re-simulation, fine vs twice finer)\n"
+        "    --history (per relaxed NLP) --trajectory (per interval; switches)\n"
+        "    homotopy: --sigma0 --kappa --max-steps --relaxed-tolerance-factor --ipopt-tol\n"
+        "    --mu-strategy --cold-mu-strategy --ipopt-print-level --ipopt=name:value,..."}},
       {"ocp-accuracy",
        {fesd_bench::ocpAccuracy,
         "Showcase: terminal accuracy (fine FESD re-simulation of the optimal controls) vs CPU\n"
         "    time, CSV. --intervals=30 --stages=1,2,3,4 --elements=1,2,3,4\n"
         "    --methods=fesd,standard --budget=120 (s per solve) --reference-stages=4\n"
-        "    --reference-elements=8"}},
+        "    --reference-elements=8 --start=plan|constant (first guess)"}},
       {"scaling",
        {fesd_bench::scaling,
         "Solve time vs N_ctrl (showcase) and vs bodies (lanes of pusher + puck, pruning on\n"
@@ -75,7 +81,8 @@ const std::map<std::string, Command>& commands() {
         "Example 1 (seed 000): terminal error vs step for FESD and standard, Radau-IIA.\n"
         "    --stages=1,2,3,4 --totals=10,20,40,80,140,200,400 --elements=2 (per step)\n"
         "    --methods=fesd,standard --repeat=1 (timing: best of N) --profile (iterations per\n"
-        "    homotopy level) --sigma0=1 --kappa=0.01 (homotopy) --big-m=1e5 (step equilibration)\n"
+        "    homotopy level) --sigma0=1 --kappa=0.01 (homotopy) "
+        "--pds-equilibration=polishing|big-m --big-m=1e9\n"
         "    --comp-tol=1e-9 --cross=sums|pairs (cross-complementarity form) --polish=true"}},
   };
   return table;

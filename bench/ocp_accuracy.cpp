@@ -1,6 +1,7 @@
 // ocp-accuracy: what accuracy costs on the manipulation showcase (seed 000 Sec. IV-B; the
 // analogue of seed 001 Fig. 13). Each run solves the OCP, then re-simulates its optimal controls
 // with a much finer FESD integration; the distance of the two terminal states is the accuracy.
+// Solves start from the push plan (--start=plan, as the node does) or the constant guess.
 #include <cmath>
 #include <cstdio>
 
@@ -16,12 +17,14 @@ int ocpAccuracy(const Arguments& args) {
   const std::vector<int> elements = args.integers("elements", {1, 2, 3, 4});
   const std::vector<std::string> methods = args.texts("methods", {"fesd", "standard"});
   const double budget = args.number("budget", 120.0);
+  const bool from_plan = args.text("start", "plan") == "plan";
   fesd::SimulationOptions reference;
   reference.discretization.num_stages = args.integer("reference-stages", 4);
   reference.discretization.num_elements = args.integer("reference-elements", 8);
   args.rejectUnused();
 
   const fesd::OcpDefinition ocp = fesd::manipulation_example::ocp(intervals);
+  const fesd::PushPlan plan = fesd::manipulation_example::plan(intervals);
   std::printf(
       "method,n_s,n_fe,intervals,status,objective,terminal_error,object_goal_error,"
       "ipopt_iterations,cpu_s,wall_s\n");
@@ -34,7 +37,7 @@ int ocpAccuracy(const Arguments& args) {
         options.discretization.switch_detection = method == "fesd";
         options.homotopy.wall_time_budget = budget;
         fesd::OcpSolver solver(ocp, options);
-        const fesd::OcpSolution solution = solver.solve();
+        const fesd::OcpSolution solution = from_plan ? solver.solve(plan.guess) : solver.solve();
         const fesd::MpccReport& report = solution.report;
         const Eigen::VectorXd& end = solution.trajectory.finalState();
         const double goal_error = std::hypot(end(4), end(5) - 10.0);

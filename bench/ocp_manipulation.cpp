@@ -95,6 +95,7 @@ int ocpManipulation(const Arguments& args) {
   options.discretization.switch_detection = args.flag("fesd", true);
   options.discretization.step_bound = args.number("step-bound", options.discretization.step_bound);
   options.fixed_grid_until_sigma = args.number("fixed-grid-until", options.fixed_grid_until_sigma);
+  options.discretization.pds_step_equilibration = pdsStepEquilibration(args);
   options.discretization.equilibration_big_m =
       args.number("big-m", options.discretization.equilibration_big_m);
   applyHomotopyArguments(args, options.homotopy);

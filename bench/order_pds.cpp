@@ -61,6 +61,7 @@ int orderPds(const Arguments& args) {
   const double sigma0 = args.number("sigma0", defaults.homotopy.sigma_initial);
   const double kappa = args.number("kappa", defaults.homotopy.sigma_reduction);
   const double big_m = args.number("big-m", defaults.discretization.equilibration_big_m);
+  const fesd::PdsStepEquilibration equilibration = pdsStepEquilibration(args);
   const double comp_tol = args.number("comp-tol", defaults.homotopy.complementarity_tolerance);
   const std::string cross = args.text("cross", "sums");
   if (cross != "sums" && cross != "pairs") {
@@ -87,6 +88,7 @@ int orderPds(const Arguments& args) {
         options.homotopy.sigma_initial = sigma0;
         options.homotopy.sigma_reduction = kappa;
         options.discretization.equilibration_big_m = big_m;
+        options.discretization.pds_step_equilibration = equilibration;
         options.homotopy.complementarity_tolerance = comp_tol;
         options.homotopy.polish_active_set = polish;
         options.discretization.cross_complementarity =

@@ -7,6 +7,7 @@
 #include "fesd_trajopt/core/manipulation_example.h"
 #include "fesd_trajopt/core/moving_part.h"
 #include "fesd_trajopt/core/ocp_solver.h"
+#include "fesd_trajopt/core/push_plan.h"
 #include "fesd_trajopt/core/scene_task.h"
 
 namespace fesd_bench {
@@ -46,8 +47,8 @@ Run solveTask(const fesd::SceneTask& task, bool pruning, const fesd::OcpOptions&
   }
   const fesd::MovingPart part = fesd::movingPart(task, decisions);
   fesd::OcpSolver solver(fesd::buildOcp(part.task, part.modelled), options);
-  Run run{solver.solve(), static_cast<int>(part.modelled.size()),
-          solver.discretization().nlp().numVariables(),
+  Run run{solver.solve(fesd::planPushes(part.task, part.modelled).guess),
+          static_cast<int>(part.modelled.size()), solver.discretization().nlp().numVariables(),
           solver.discretization().nlp().numComplementarities()};
   return run;
 }

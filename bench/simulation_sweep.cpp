@@ -56,9 +56,8 @@ int simulationSweep(const Arguments& args) {
         ++runs;
         if (!ok) {
           ++failures;
-          findings.push_back("failed: n_s " + std::to_string(n_s) + ", " +
-                             std::to_string(steps) + " steps: " + result.message + " (" +
-                             scene.describe() + ")");
+          findings.push_back("failed: n_s " + std::to_string(n_s) + ", " + std::to_string(steps) +
+                             " steps: " + result.message + " (" + scene.describe() + ")");
         }
         std::printf("%d,%d,%zu,%d,%s,%d,%d,%.4f,%s,%d,%.3e,%d,%d,%.3f\n", seed,
                     scene.scene.dimension(), scene.scene.bodies().size(),
@@ -72,9 +71,9 @@ int simulationSweep(const Arguments& args) {
       for (const int i : ps::outliers(errors)) {
         if (!std::isfinite(errors[i])) continue;  // counted as a failure
         ++outlier_count;
-        findings.push_back("outlier: n_s " + std::to_string(n_s) + ", " +
-                           std::to_string(grids[i]) + " steps, error " +
-                           std::to_string(errors[i]) + " (" + scene.describe() + ")");
+        findings.push_back("outlier: n_s " + std::to_string(n_s) + ", " + std::to_string(grids[i]) +
+                           " steps, error " + std::to_string(errors[i]) + " (" + scene.describe() +
+                           ")");
       }
     }
   }
