@@ -28,7 +28,7 @@ int simulationSweep(const Arguments& args) {
 
   std::printf(
       "seed,dimension,bodies,wall,reference,stages,steps,contact_offset,status,failed_step,"
-      "relative_error,ipopt_iterations,retried_steps,wall_s\n");
+      "relative_error,ipopt_iterations,retried_steps,split_steps,fixed_step_parts,wall_s\n");
   int runs = 0, failures = 0, outlier_count = 0, reference_failures = 0;
   std::vector<std::string> findings;
   for (int seed = first_seed; seed < first_seed + scenes; ++seed) {
@@ -59,13 +59,14 @@ int simulationSweep(const Arguments& args) {
           findings.push_back("failed: n_s " + std::to_string(n_s) + ", " + std::to_string(steps) +
                              " steps: " + result.message + " (" + scene.describe() + ")");
         }
-        std::printf("%d,%d,%zu,%d,%s,%d,%d,%.4f,%s,%d,%.3e,%d,%d,%.3f\n", seed,
+        std::printf("%d,%d,%zu,%d,%s,%d,%d,%.4f,%s,%d,%.3e,%d,%d,%d,%d,%.3f\n", seed,
                     scene.scene.dimension(), scene.scene.bodies().size(),
                     scene.scene.walls().empty() ? 0 : 1,
                     scene.hasClosedForm() ? "closed_form" : "fine_fesd", n_s, steps,
                     position - static_cast<int>(position), fesd::statusName(result.status).c_str(),
                     ok ? -1 : result.completed_steps, error, result.totals.iterations,
-                    result.retried_steps, result.totals.wall_seconds);
+                    result.retried_steps, result.split_steps, result.fixed_step_parts,
+                    result.totals.wall_seconds);
         std::fflush(stdout);
       }
       for (const int i : ps::outliers(errors)) {

@@ -102,7 +102,7 @@ TEST(PushScenes, OutliersAreErrorsFarAboveBothNeighbours) {
   EXPECT_EQ(ps::outliers({1e-3, 1.0, 1e-4}), std::vector<int>{1});
   EXPECT_TRUE(ps::outliers({1e-3, 5e-2, 1e-4}).empty());     // 50x above one neighbour only
   EXPECT_TRUE(ps::outliers({1e-12, 1e-11, 1e-13}).empty());  // round-off is raised to the floor
-  EXPECT_EQ(ps::outliers({1e-3, 1e-6}), std::vector<int>{0});
+  EXPECT_TRUE(ps::outliers({1e-3, 1e-6}).empty());  // the ends are not judged
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include "fesd_trajopt/core/stopwatch.h"
@@ -57,7 +58,7 @@ class FesdIntegrator::Run {
   }
 
   const std::string& failure() const { return failure_; }
-  const Discretization& discretization() { return *partOf(0, 0).discretization; }
+  const Discretization& discretization() { return *partOf(0, 0, true).discretization; }
   double wallSeconds() const { return stopwatch_.wallSeconds(); }
   double cpuSeconds() const { return stopwatch_.cpuSeconds(); }
 
@@ -69,41 +70,25 @@ class FesdIntegrator::Run {
     std::unique_ptr<Discretization> discretization;
     std::vector<double> previous_solution;
   };
+  /// One solve of a part: its report, the trajectory piece, whether the retry path gave it.
+  struct Attempt {
+    MpccReport report;
+    Trajectory piece;
+    bool retried = false;
+  };
 
   /// Solves [start_time, start_time + length) under control u from the current state, where
-  /// length = h 0.1^tenths 0.4^middles; a part whose solution is not exact is split
-  /// (kSplitFractions) while SimulationOptions::max_step_splits allows. False when it stops
-  /// the simulation.
+  /// length = h 0.1^tenths 0.4^middles. A part whose solution is not exact is split
+  /// (kSplitFractions) while SimulationOptions::max_step_splits allows; a part of a split step
+  /// that cannot be split any further and does not converge is integrated with fixed steps.
+  /// False when it stops the simulation.
   bool solve(int tenths, int middles, const Eigen::VectorXd& u, double start_time) {
-    Part& part = partOf(tenths, middles);
-    Discretization& discretization = *part.discretization;
-    discretization.setInitialState(state_);
-    if (!result.trajectory.elements.empty()) {
-      discretization.continueFrom(result.trajectory,
-                                  previous_control_.size() == u.size() && previous_control_ == u);
-    }
-    previous_control_ = u;
-    if (u.size() > 0) discretization.fixControl(0, u);
-    const std::vector<double> guess =
-        part.previous_solution.empty() || !options_.reuse_previous_step
-            ? discretization.constantGuess({u})
-            : discretization.translatedGuess(part.previous_solution);
-    const RelaxedMpcc& nlp = discretization.nlp();
-    MpccReport report = solver_.solve(discretization.nlp(), guess, -1.0, remainingBudget());
-    bool retried = false;
-    if (!exact(report, nlp) && report.status != SolveStatus::kTimeout) {
-      MpccReport retry = retry_solver_.solve(discretization.nlp(), guess, -1.0, remainingBudget());
-      retried = rank(retry, nlp) > rank(report, nlp);
-      if (retried) {
-        retry.addEffort(report);  // both attempts' effort counts
-        report = std::move(retry);
-      } else {
-        report.addEffort(retry);
-      }
-    }
-    if (!exact(report, nlp) && report.status != SolveStatus::kTimeout &&
-        tenths + middles < options_.max_step_splits) {
-      result.totals.addEffort(report);  // the attempts on the whole part count too
+    Part& part = partOf(tenths, middles, true);
+    Attempt attempt = solvePart(part, u, start_time);
+    const bool can_split = tenths + middles < options_.max_step_splits;
+    const bool timed_out = attempt.report.status == SolveStatus::kTimeout;
+    if (can_split && !timed_out && !exact(attempt.report, part.discretization->nlp())) {
+      result.totals.addEffort(attempt.report);  // the attempts on the whole part count too
       split_ = true;
       double time = start_time;
       for (const double fraction : kSplitFractions) {
@@ -113,28 +98,74 @@ class FesdIntegrator::Run {
       }
       return true;
     }
-    result.retried_steps += retried;
-    part.previous_solution = report.solution;
-    result.totals.accumulate(report);
-    result.step_histories.push_back(report.history);
-    Trajectory piece =
-        discretization.extract(report.solution.data(), start_time, options_.activity_tolerance,
-                               options_.penetration_tolerance);
-    result.trajectory.append(piece);
-    state_ = piece.finalState();
-    if (report.converged()) return true;
-    result.status = report.status;
-    failure_ = report.message;
+    if (!can_split && tenths + middles > 0 && !timed_out && !attempt.report.converged()) {
+      // A tiny part (1e-4 h after four levels) that still holds more switches than FESD can
+      // place, e.g. a contact and a release 2e-6 apart: fixed steps keep the simulation going
+      // at an error of the order of the part's length, and its switches are flagged unresolved.
+      Attempt fixed = solvePart(partOf(tenths, middles, false), u, start_time);
+      fixed.report.addEffort(attempt.report);
+      if (fixed.report.converged()) {
+        attempt = std::move(fixed);
+        ++result.fixed_step_parts;
+      }
+    }
+    result.retried_steps += attempt.retried;
+    result.totals.accumulate(attempt.report);
+    result.step_histories.push_back(attempt.report.history);
+    result.trajectory.append(attempt.piece);
+    state_ = attempt.piece.finalState();
+    previous_control_ = u;
+    if (attempt.report.converged()) return true;
+    result.status = attempt.report.status;
+    failure_ = attempt.report.message;
     return false;
   }
 
-  Part& partOf(int tenths, int middles) {
-    const auto found = parts_.find({tenths, middles});
+  /// One part from the current state: the homotopy, and its retry path if that is not exact.
+  Attempt solvePart(Part& part, const Eigen::VectorXd& u, double start_time) {
+    Discretization& discretization = *part.discretization;
+    discretization.setInitialState(state_);
+    if (!result.trajectory.elements.empty()) {
+      discretization.continueFrom(result.trajectory,
+                                  previous_control_.size() == u.size() && previous_control_ == u);
+    }
+    if (u.size() > 0) discretization.fixControl(0, u);
+    const std::vector<double> guess =
+        part.previous_solution.empty() || !options_.reuse_previous_step
+            ? discretization.constantGuess({u})
+            : discretization.translatedGuess(part.previous_solution);
+    const RelaxedMpcc& nlp = discretization.nlp();
+    Attempt attempt;
+    attempt.report = solver_.solve(discretization.nlp(), guess, -1.0, remainingBudget());
+    if (!exact(attempt.report, nlp) && attempt.report.status != SolveStatus::kTimeout) {
+      MpccReport retry = retry_solver_.solve(discretization.nlp(), guess, -1.0, remainingBudget());
+      attempt.retried = rank(retry, nlp) > rank(attempt.report, nlp);
+      if (attempt.retried) {
+        retry.addEffort(attempt.report);  // both attempts' effort counts
+        attempt.report = std::move(retry);
+      } else {
+        attempt.report.addEffort(retry);
+      }
+    }
+    part.previous_solution = attempt.report.solution;
+    attempt.piece =
+        discretization.extract(attempt.report.solution.data(), start_time,
+                               options_.activity_tolerance, options_.penetration_tolerance);
+    return attempt;
+  }
+
+  /// The part of that length with switch detection (FESD, if the options have it) or with
+  /// fixed steps, built when first needed.
+  Part& partOf(int tenths, int middles, bool switch_detection) {
+    const auto key = std::make_tuple(tenths, middles, switch_detection);
+    const auto found = parts_.find(key);
     if (found != parts_.end()) return found->second;
     OcpDefinition problem = step_problem_;
     problem.horizon *= std::pow(0.1, tenths) * std::pow(0.4, middles);
-    Part part{problem.horizon, discretize(problem, options_.discretization), {}};
-    return parts_.emplace(std::make_pair(tenths, middles), std::move(part)).first->second;
+    DiscretizationOptions discretization = options_.discretization;
+    discretization.switch_detection = discretization.switch_detection && switch_detection;
+    Part part{problem.horizon, discretize(problem, discretization), {}};
+    return parts_.emplace(key, std::move(part)).first->second;
   }
 
   /// What is left of the wall-time budget; negative (none) without a budget.
@@ -149,9 +180,10 @@ class FesdIntegrator::Run {
   OcpDefinition step_problem_;
   MpccSolver solver_, retry_solver_;
   Eigen::VectorXd state_;
-  Eigen::VectorXd previous_control_;           ///< of the part solved last
-  std::map<std::pair<int, int>, Part> parts_;  ///< by (tenths, middles); references stay valid
-  bool split_ = false;                         ///< the current step was split
+  Eigen::VectorXd previous_control_;  ///< of the last part in the trajectory
+  /// By (tenths, middles, switch detection); a map's references stay valid as parts are added.
+  std::map<std::tuple<int, int, bool>, Part> parts_;
+  bool split_ = false;  ///< the current step was split
   std::string failure_;
 };
 

@@ -135,14 +135,12 @@ Eigen::VectorXd referenceEnd(const PushScene& scene, int fine_steps) {
 
 std::vector<int> outliers(const std::vector<double>& errors, double ratio, double floor) {
   std::vector<int> found;
-  const int count = static_cast<int>(errors.size());
-  for (int i = 0; i < count; ++i) {
+  for (size_t i = 1; i + 1 < errors.size(); ++i) {
     const double error = std::max(errors[i], floor);
-    bool above_all = count > 1;
-    for (int j : {i - 1, i + 1}) {
-      if (j >= 0 && j < count) above_all &= error > ratio * std::max(errors[j], floor);
+    if (error > ratio * std::max(errors[i - 1], floor) &&
+        error > ratio * std::max(errors[i + 1], floor)) {
+      found.push_back(static_cast<int>(i));
     }
-    if (above_all) found.push_back(i);
   }
   return found;
 }

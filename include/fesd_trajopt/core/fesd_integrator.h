@@ -48,12 +48,14 @@ struct SimulationOptions {
   bool reuse_previous_step = true;
   /// A step whose solution is not exact (neither homotopy converges, or no active set can be
   /// polished; not for lack of time) is solved in four parts, 0.1, 0.4, 0.4 and 0.1 of its
-  /// length, each with num_elements elements, recursively up to this many levels. Measured on the random
-  /// push scenes (fesd_bench simulation-sweep): most such steps held more switches than their
-  /// element boundaries can place (a chain of contacts, a body meeting a wall), an infeasible
+  /// length, each with num_elements elements, recursively up to this many levels. Measured on the
+  /// random push scenes (fesd_bench simulation-sweep): most such steps held more switches than
+  /// their element boundaries can place (a chain of contacts, a body meeting a wall), an infeasible
   /// FESD step rather than a solver failure; others had a switch within 1e-3 of their start or
   /// end, which needs a tiny element (the short end parts make it ten times longer relative to
-  /// its part). 0: fail (or keep the unpolished solution) instead.
+  /// its part). A part at the last level that still does not converge is integrated with fixed
+  /// steps (SimulationResult::fixed_step_parts). 0: no splitting; such a step fails (or keeps its
+  /// unpolished solution).
   int max_step_splits = 4;
 };
 
@@ -66,6 +68,9 @@ struct SimulationResult {
   int completed_steps = 0;
   int retried_steps = 0;  ///< steps (or parts of steps) that needed the retry homotopy
   int split_steps = 0;    ///< steps solved in parts (SimulationOptions::max_step_splits)
+  /// The deepest parts that FESD could not solve, integrated with fixed steps instead (their
+  /// switches are reported unresolved).
+  int fixed_step_parts = 0;
 };
 
 /// Simulates a nonsmooth system (any DynamicsModel) with FESD: num_steps steps of length horizon /

@@ -54,8 +54,11 @@ SimulationResult simulate(const PushScene& scene, int steps, const SimulationOpt
 /// Radau-IIA stages and 2 elements on `fine_steps` steps (empty if that one fails).
 Eigen::VectorXd referenceEnd(const PushScene& scene, int fine_steps);
 
-/// Indices of the errors (of consecutive grids) more than `ratio` times above each neighbour's,
-/// every error first raised to at least `floor` (round-off is no signal).
+/// Indices of the errors (of consecutive grids) more than `ratio` times above both neighbours',
+/// every error first raised to at least `floor` (round-off is no signal). The coarsest and
+/// finest grid have one neighbour and are not judged: at the coarse end FESD's element lengths
+/// alone move the error by 2^(2 n_s - 1) (a switch near a step's end leaves the other element
+/// nearly 2 h0 long).
 std::vector<int> outliers(const std::vector<double>& errors, double ratio = 100.0,
                           double floor = 1e-10);
 
