@@ -75,6 +75,14 @@ fesd::StepEquilibration stepEquilibration(const Arguments& args) {
   throw std::invalid_argument("--equilibration takes indicator, tanh or none");
 }
 
+bool startsFromPlan(const Arguments& args) {
+  const std::string start = args.text("start", "plan");
+  if (start != "plan" && start != "constant") {
+    throw std::invalid_argument("--start takes plan or constant");
+  }
+  return start == "plan";
+}
+
 fesd::PdsStepEquilibration pdsStepEquilibration(const Arguments& args) {
   const std::string form = args.text("pds-equilibration", "polishing");
   if (form == "polishing") return fesd::PdsStepEquilibration::kPolishing;

@@ -33,6 +33,10 @@ class Arguments {
 /// --equilibration=indicator|tanh|none: a Filippov system's step equilibration.
 fesd::StepEquilibration stepEquilibration(const Arguments& args);
 
+/// --start=plan|constant: whether a scene OCP starts from its push plan (as the node does) or from
+/// every state at x0.
+bool startsFromPlan(const Arguments& args);
+
 /// --pds-equilibration=polishing|big-m: how a PDS discretisation imposes step equilibration.
 fesd::PdsStepEquilibration pdsStepEquilibration(const Arguments& args);
 

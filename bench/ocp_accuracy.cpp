@@ -17,7 +17,7 @@ int ocpAccuracy(const Arguments& args) {
   const std::vector<int> elements = args.integers("elements", {1, 2, 3, 4});
   const std::vector<std::string> methods = args.texts("methods", {"fesd", "standard"});
   const double budget = args.number("budget", 120.0);
-  const bool from_plan = args.text("start", "plan") == "plan";
+  const bool from_plan = startsFromPlan(args);
   fesd::SimulationOptions reference;
   reference.discretization.num_stages = args.integer("reference-stages", 4);
   reference.discretization.num_elements = args.integer("reference-elements", 8);

@@ -107,10 +107,7 @@ int ocpManipulation(const Arguments& args) {
       args.integer("resim-elements", 2 * options.discretization.num_elements);
   const bool divergence = args.flag("divergence", false);
   const bool history = args.flag("history", false);
-  const std::string start = args.text("start", "plan");
-  if (start != "plan" && start != "constant") {
-    throw std::invalid_argument("--start takes plan or constant");
-  }
+  const bool from_plan = startsFromPlan(args);
   options.guess_sigma = args.number("guess-sigma", options.guess_sigma);
   options.guess_early_polish_sigma =
       args.number("guess-early-polish", options.guess_early_polish_sigma);
@@ -122,7 +119,7 @@ int ocpManipulation(const Arguments& args) {
   std::vector<double> walls;
   for (int r = 0; r < repeat; ++r) {
     fesd::OcpSolver solver(ocp, options);
-    const fesd::OcpSolution solution = start == "plan" ? solver.solve(plan.guess) : solver.solve();
+    const fesd::OcpSolution solution = from_plan ? solver.solve(plan.guess) : solver.solve();
     const fesd::MpccReport& report = solution.report;
     const Eigen::VectorXd& end = solution.trajectory.finalState();
     int contacts = 0, releases = 0;
@@ -142,8 +139,8 @@ int ocpManipulation(const Arguments& args) {
         contacts, releases, resim, report.iterations, report.wall_seconds, report.cpu_seconds,
         report.ipopt_seconds, report.evaluation_seconds, report.history.size(), intervals,
         options.discretization.num_elements, options.discretization.num_stages,
-        options.discretization.switch_detection ? "fesd" : "standard", start.c_str(),
-        blasVariant());
+        options.discretization.switch_detection ? "fesd" : "standard",
+        from_plan ? "plan" : "constant", blasVariant());
     if (history) printHistory(report);
     if (print_trajectory) printTrajectory(solution.trajectory);
     if (divergence) printDivergence(ocp, solution, fine);

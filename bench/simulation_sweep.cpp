@@ -39,7 +39,7 @@ int simulationSweep(const Arguments& args) {
       findings.push_back("reference failed: " + scene.describe());
       continue;
     }
-    const double length = scene.scene.bodies()[0].radius + scene.scene.bodies()[1].radius;
+    const double length = scene.contactDistance();
     for (const int n_s : stages) {
       std::vector<double> errors;
       for (const int steps : grids) {

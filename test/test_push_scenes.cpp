@@ -12,11 +12,9 @@ namespace {
 
 namespace ps = fesd::push_scenes;
 
+/// The sweep's options: n_s stages, 2 elements per step.
 fesd::SimulationOptions sweepOptions(int stages) {
-  fesd::SimulationOptions options;
-  options.discretization.num_stages = stages;
-  options.discretization.num_elements = 2;
-  return options;
+  return hard_cases::fesdOptions(stages, 2);
 }
 
 TEST(PushScenes, TheClosedFormMatchesAFineSimulation) {
@@ -75,7 +73,7 @@ TEST_P(PushSceneSweep, EveryGridConvergesWithoutOutliers) {
   const ps::PushScene scene = ps::randomPushScene(GetParam().seed);
   const Eigen::VectorXd reference = ps::referenceEnd(scene, 161);
   ASSERT_EQ(reference.size(), scene.initialState().size()) << "reference failed";
-  const double length = scene.scene.bodies()[0].radius + scene.scene.bodies()[1].radius;
+  const double length = scene.contactDistance();
   std::vector<double> errors;
   for (const int steps : {4, 5, 6, 8, 10}) {
     const fesd::SimulationResult result =
@@ -102,7 +100,7 @@ TEST(PushScenes, OutliersAreErrorsFarAboveBothNeighbours) {
   EXPECT_EQ(ps::outliers({1e-3, 1.0, 1e-4}), std::vector<int>{1});
   EXPECT_TRUE(ps::outliers({1e-3, 5e-2, 1e-4}).empty());     // 50x above one neighbour only
   EXPECT_TRUE(ps::outliers({1e-12, 1e-11, 1e-13}).empty());  // round-off is raised to the floor
-  EXPECT_TRUE(ps::outliers({1e-3, 1e-6}).empty());  // the ends are not judged
+  EXPECT_TRUE(ps::outliers({1e-3, 1e-6}).empty());           // the ends are not judged
 }
 
 }  // namespace

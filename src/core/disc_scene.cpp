@@ -13,6 +13,9 @@ struct PairGeometry {
   int second = -1;        ///< state index of the other body (body-body only)
   Eigen::VectorXd point;  ///< obstacle centre or wall normal
   double constant = 0.0;  ///< (R_i + R_j)^2, (R_i + R_o)^2, or offset + R_i
+  /// A typical |grad c| on the boundary c = 0 (DcsModel's constraint scale): 2 (R_i + R_j), or 1
+  /// for a wall.
+  double gradient_scale = 1.0;
 };
 
 std::vector<PairGeometry> geometry(const DiscScene& scene, const std::vector<ContactPair>& pairs) {
@@ -27,12 +30,14 @@ std::vector<PairGeometry> geometry(const DiscScene& scene, const std::vector<Con
         const SceneBody& other = scene.bodies().at(pair.other);
         g.second = scene.stateIndex(pair.other);
         g.constant = (body.radius + other.radius) * (body.radius + other.radius);
+        g.gradient_scale = 2.0 * (body.radius + other.radius);
         break;
       }
       case ContactPair::Kind::kObstacle: {
         const SceneObstacle& obstacle = scene.obstacles().at(pair.other);
         g.point = obstacle.position;
         g.constant = (body.radius + obstacle.radius) * (body.radius + obstacle.radius);
+        g.gradient_scale = 2.0 * (body.radius + obstacle.radius);
         break;
       }
       case ContactPair::Kind::kWall: {
@@ -336,7 +341,10 @@ std::shared_ptr<const DcsModel> DiscScene::model(const std::vector<ContactPair>&
       throw std::invalid_argument("DiscScene: body '" + body.name + "' has the wrong dimension");
     }
   }
-  auto gradients = std::make_shared<const PairGradients>(dimension_, geometry(*this, pairs));
+  std::vector<PairGeometry> pair_geometry = geometry(*this, pairs);
+  Eigen::VectorXd scales(pair_geometry.size());
+  for (size_t k = 0; k < pair_geometry.size(); ++k) scales(k) = pair_geometry[k].gradient_scale;
+  auto gradients = std::make_shared<const PairGradients>(dimension_, std::move(pair_geometry));
   std::vector<std::pair<int, int>> actuation;  // (state index, control index) per coordinate
   for (int b = 0; b < static_cast<int>(bodies_.size()); ++b) {
     if (!bodies_[b].actuated) continue;
@@ -345,23 +353,6 @@ std::shared_ptr<const DcsModel> DiscScene::model(const std::vector<ContactPair>&
     }
   }
   const int nc = static_cast<int>(pairs.size());
-  // |grad c| on the boundary: 2 (R_i + R_j) for a pair of discs, 1 for a wall.
-  Eigen::VectorXd scales(nc);
-  for (int k = 0; k < nc; ++k) {
-    const ContactPair& pair = pairs[k];
-    const double radius = bodies_.at(pair.body).radius;
-    switch (pair.kind) {
-      case ContactPair::Kind::kBody:
-        scales(k) = 2.0 * (radius + bodies_.at(pair.other).radius);
-        break;
-      case ContactPair::Kind::kObstacle:
-        scales(k) = 2.0 * (radius + obstacles_.at(pair.other).radius);
-        break;
-      case ContactPair::Kind::kWall:
-        scales(k) = 1.0;
-        break;
-    }
-  }
   return std::make_shared<DcsModel>(
       stateSize(), controlSize(), nc,
       std::make_shared<SceneVelocity>(stateSize(), actuation, gradients, controlSize()),

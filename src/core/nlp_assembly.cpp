@@ -14,6 +14,10 @@ int SlotMap::slot(int row, int col) {
 }
 
 namespace {
+/// A free side counts as zero (the pair as biactive) below this fraction of the largest free
+/// side: a failed polishing solve leaves such a side at its bound up to Ipopt's tolerance.
+constexpr double kBiactiveFraction = 1e-7;
+
 /// Hessian slots live in the lower triangle.
 int lowerSlot(SlotMap& slots, int a, int b) {
   return slots.slot(std::max(a, b), std::min(a, b));
@@ -431,7 +435,7 @@ std::vector<bool> NlpAssembly::flipBiactivePairs(const double* x) const {
   std::vector<bool> flipped = fixed_left_;
   bool any = false;
   for (size_t p = 0; p < complementarities_.size(); ++p) {
-    if (free_sides[p] <= 1e-7 * largest) {
+    if (free_sides[p] <= kBiactiveFraction * largest) {
       flipped[p] = !flipped[p];
       any = true;
     }

@@ -41,14 +41,14 @@ OcpSolver::OcpSolver(OcpDefinition ocp, OcpOptions options)
   }
 }
 
-std::string startName(OcpStart start) {
+std::string startName(OcpStart start, const std::string& guess) {
   switch (start) {
     case OcpStart::kConstant:
       return "constant";
     case OcpStart::kGuess:
-      return "guess";
+      return guess;
     case OcpStart::kConstantAfterGuess:
-      return "constant after a failed solve from the guess";
+      return "constant after a failed solve from the " + guess;
     case OcpStart::kPrevious:
       return "previous solution";
   }

@@ -58,11 +58,30 @@ bool apart(const DiscScene& scene, const Eigen::VectorXd& position, double radiu
   return true;
 }
 
+/// The pair's unit normal (pusher to body) at the first contact and its angle to the push.
+struct FirstContact {
+  Eigen::VectorXd normal;
+  double cos_angle, angle;
+};
+
+FirstContact firstContact(const PushScene& s) {
+  const Eigen::VectorXd normal =
+      (s.scene.bodies()[1].position - s.scene.bodies()[0].position - s.contact_time * s.velocity) /
+      s.contactDistance();
+  const double cos_angle =
+      std::max(-1.0, std::min(1.0, normal.dot(s.velocity / s.velocity.norm())));
+  return {normal, cos_angle, std::acos(cos_angle)};
+}
+
 }  // namespace
 
 const std::vector<int>& sweepGrids() {
   static const std::vector<int> grids{4, 5, 6, 8, 10, 12, 16, 20, 24, 32, 40};
   return grids;
+}
+
+double PushScene::contactDistance() const {
+  return scene.bodies()[0].radius + scene.bodies()[1].radius;
 }
 
 bool PushScene::hasClosedForm() const {
@@ -71,7 +90,7 @@ bool PushScene::hasClosedForm() const {
 
 Eigen::VectorXd PushScene::exact(double t) const {
   const Eigen::VectorXd p0 = scene.bodies()[0].position, q0 = scene.bodies()[1].position;
-  const double distance = scene.bodies()[0].radius + scene.bodies()[1].radius;
+  const double distance = contactDistance();
   const int dim = scene.dimension();
   Eigen::VectorXd x(2 * dim);
   if (t <= contact_time) {
@@ -80,12 +99,11 @@ Eigen::VectorXd PushScene::exact(double t) const {
   }
   const double speed = velocity.norm();
   const Eigen::VectorXd u_hat = velocity / speed;
-  const Eigen::VectorXd n0 = (q0 - p0 - contact_time * velocity) / distance;
-  const double cos0 = std::max(-1.0, std::min(1.0, n0.dot(u_hat)));
-  const Eigen::VectorXd across = n0 - cos0 * u_hat;
+  const FirstContact first = firstContact(*this);
+  const double cos0 = first.cos_angle, phi0 = first.angle;
+  const Eigen::VectorXd across = first.normal - cos0 * u_hat;
   const Eigen::VectorXd e =
       across.norm() > 1e-14 ? Eigen::VectorXd(across.normalized()) : Eigen::VectorXd::Zero(dim);
-  const double phi0 = std::acos(cos0);
   const double release = releaseTime();
   const double elapsed = std::min(t, release) - contact_time;
   const double phi = 2.0 * std::atan(std::tan(0.5 * phi0) * std::exp(speed * elapsed / distance));
@@ -100,13 +118,9 @@ Eigen::VectorXd PushScene::exact(double t) const {
 }
 
 double PushScene::releaseTime() const {
-  const double distance = scene.bodies()[0].radius + scene.bodies()[1].radius;
-  const Eigen::VectorXd n0 =
-      (scene.bodies()[1].position - scene.bodies()[0].position - contact_time * velocity) /
-      distance;
-  const double phi0 = std::acos(std::max(-1.0, std::min(1.0, n0.dot(velocity.normalized()))));
   // tan(phi / 2) reaches tan(pi / 4) = 1; a central push (phi0 = 0) never lets go.
-  return contact_time + distance / velocity.norm() * -std::log(std::tan(0.5 * phi0));
+  return contact_time +
+         contactDistance() / velocity.norm() * -std::log(std::tan(0.5 * firstContact(*this).angle));
 }
 
 std::string PushScene::describe() const {

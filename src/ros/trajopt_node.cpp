@@ -161,9 +161,7 @@ void TrajoptNode::handleSolve(const fesd_trajopt::SolveTrajectory::Request& requ
   response.solution = sceneSolution(
       task, decisions, fesd::fullSceneTrajectory(task, part, solution.trajectory), solution.report);
   response.solution.message = solution.message;  // with the warning on unresolved switches
-  response.solution.statistics.start = solution.start == fesd::OcpStart::kGuess
-                                           ? "push plan"
-                                           : "constant after a failed solve from the push plan";
+  response.solution.statistics.start = fesd::startName(solution.start, "push plan");
   const fesd::NlpAssembly& nlp = solver.discretization().nlp();
   response.solution.statistics.nlp_variables = nlp.numVariables();
   response.solution.statistics.nlp_constraints = nlp.numConstraints();

@@ -92,8 +92,6 @@ class FesdDiscretization : public Discretization {
   struct StagePoint {
     int x = -1, s = -1, lambda = -1;  ///< first indices of the point's x, s = c(x), lambda
   };
-  /// Data: lambda carried over a step boundary for continuity (continueFrom), else 0.
-  int carried_lambda_ = -1;
   /// The backward (element n-1) and forward (element n) sums of one constraint at a boundary.
   struct BoundarySums {
     LinearExpression lambda_backward, lambda_forward, c_backward, c_forward;
@@ -132,6 +130,8 @@ class FesdDiscretization : public Discretization {
   bool steps_free_;
   NlpAssembly nlp_;
   StagePoint start_;
+  /// Data: lambda carried over a step boundary for continuity (continueFrom), else 0.
+  int carried_lambda_ = -1;
   CollocationGrid grid_;
   std::vector<std::vector<StagePoint>> stages_;  ///< per element, per stage
   std::vector<EquilibrationAuxiliaries> equilibration_;

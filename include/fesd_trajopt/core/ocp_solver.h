@@ -51,7 +51,8 @@ enum class OcpStart {
   kConstantAfterGuess,  ///< the solve from the guess failed; then from the constant start
   kPrevious,            ///< a previous solution (solve(previous))
 };
-std::string startName(OcpStart start);
+/// The start in words; `guess` names what solve(guess) was given (e.g. "push plan").
+std::string startName(OcpStart start, const std::string& guess = "guess");
 
 struct OcpSolution {
   SolveStatus status = SolveStatus::kSolverError;

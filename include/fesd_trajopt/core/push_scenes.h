@@ -33,6 +33,8 @@ struct PushScene {
   std::vector<ContactPair> pairs() const { return scene.allPairs(); }
   std::shared_ptr<const DcsModel> model() const { return scene.model(pairs()); }
   Eigen::VectorXd initialState() const { return scene.initialState(); }
+  /// The pusher's and the first body's radii summed: the scene's unit of length.
+  double contactDistance() const;
   /// A pusher and one passive body, no wall: the exact solution is known (exact()).
   bool hasClosedForm() const;
   /// The exact state at time t (hasClosedForm() only). In contact the projection of (u, 0) onto
