@@ -69,7 +69,8 @@ const std::map<std::string, Command>& commands() {
         "    often within 1 % of a step's start or end) simulated on every grid: status, terminal\n"
         "    error against the closed form or a fine FESD run, outlier grids (error > 100x both\n"
         "    neighbours'), CSV and summary. --first-seed=0 --scenes=24 --stages=1,2,3,4\n"
-        "    --steps=4,5,6,8,10,12,16,20,24,32,40 --elements=2 --reference-steps=161 --budget=60"}},
+        "    --steps=4,5,6,8,10,12,16,20,24,32,40 --elements=2 --refine-elements=1\n"
+        "    --max-element-stretch=1.05 --reference-steps=161 --budget=60"}},
       {"sign-ocp",
        {fesd_bench::signOcp,
         "OCP (56) (seed 001): x0 found from forward-simulation guesses, FESD vs standard, with a\n"

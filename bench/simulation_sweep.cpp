@@ -19,6 +19,9 @@ int simulationSweep(const Arguments& args) {
   const std::vector<int> stages = args.integers("stages", {1, 2, 3, 4});
   const std::vector<int> grids = args.integers("steps", ps::sweepGrids());
   const int elements = args.integer("elements", 2);
+  const bool refine_elements = args.integer("refine-elements", 1) != 0;
+  const double max_element_stretch =
+      args.number("max-element-stretch", fesd::SimulationOptions().max_element_stretch);
   // 161 = 7 * 23 shares no step boundary with any sweep grid: a reference that steps exactly
   // where a grid does could share that grid's error (measured: a release 3.5e-5 before a
   // common boundary, 5.9e-8 in both).
@@ -28,7 +31,8 @@ int simulationSweep(const Arguments& args) {
 
   std::printf(
       "seed,dimension,bodies,wall,reference,stages,steps,contact_offset,status,failed_step,"
-      "relative_error,ipopt_iterations,retried_steps,split_steps,fixed_step_parts,wall_s\n");
+      "relative_error,ipopt_iterations,retried_steps,split_steps,fixed_step_parts,refined_parts,"
+      "wall_s\n");
   int runs = 0, failures = 0, outlier_count = 0, reference_failures = 0;
   std::vector<std::string> findings;
   for (int seed = first_seed; seed < first_seed + scenes; ++seed) {
@@ -46,6 +50,8 @@ int simulationSweep(const Arguments& args) {
         fesd::SimulationOptions options;
         options.discretization.num_stages = n_s;
         options.discretization.num_elements = elements;
+        options.refine_elements = refine_elements;
+        options.max_element_stretch = max_element_stretch;
         options.wall_time_budget = budget;
         const fesd::SimulationResult result = ps::simulate(scene, steps, options);
         const bool ok = result.status == fesd::SolveStatus::kSuccess;
@@ -59,14 +65,14 @@ int simulationSweep(const Arguments& args) {
           findings.push_back("failed: n_s " + std::to_string(n_s) + ", " + std::to_string(steps) +
                              " steps: " + result.message + " (" + scene.describe() + ")");
         }
-        std::printf("%d,%d,%zu,%d,%s,%d,%d,%.4f,%s,%d,%.3e,%d,%d,%d,%d,%.3f\n", seed,
+        std::printf("%d,%d,%zu,%d,%s,%d,%d,%.4f,%s,%d,%.3e,%d,%d,%d,%d,%d,%.3f\n", seed,
                     scene.scene.dimension(), scene.scene.bodies().size(),
                     scene.scene.walls().empty() ? 0 : 1,
                     scene.hasClosedForm() ? "closed_form" : "fine_fesd", n_s, steps,
                     position - static_cast<int>(position), fesd::statusName(result.status).c_str(),
                     ok ? -1 : result.completed_steps, error, result.totals.iterations,
                     result.retried_steps, result.split_steps, result.fixed_step_parts,
-                    result.totals.wall_seconds);
+                    result.refined_parts, result.totals.wall_seconds);
         std::fflush(stdout);
       }
       for (const int i : ps::outliers(errors)) {

@@ -15,6 +15,12 @@ fesd::SimulationOptions fesdOptions(int stages, int elements, double step_bound)
   return options;
 }
 
+fesd::SimulationOptions fixedElementCountOptions(int stages, int elements) {
+  fesd::SimulationOptions options = fesdOptions(stages, elements);
+  options.refine_elements = false;
+  return options;
+}
+
 std::shared_ptr<const fesd::DcsModel> affineModel(const Eigen::MatrixXd& F,
                                                   const Eigen::VectorXd& f0,
                                                   const Eigen::MatrixXd& A,

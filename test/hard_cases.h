@@ -19,6 +19,10 @@ namespace hard_cases {
 /// FESD with Radau-IIA: `stages` per element, `elements` per simulation step, step bound gamma_h.
 fesd::SimulationOptions fesdOptions(int stages, int elements, double step_bound = 1.0);
 
+/// fesdOptions with every step kept on `elements` elements (SimulationOptions::refine_elements
+/// off): the discretisation of the papers, for tests of its own properties (orders, grid jumps).
+fesd::SimulationOptions fixedElementCountOptions(int stages, int elements);
+
 /// The affine DCS  xdot = F x + f0 + A^T lambda,  0 <= A x + b  _|_  lambda >= 0  (no controls).
 std::shared_ptr<const fesd::DcsModel> affineModel(const Eigen::MatrixXd& F,
                                                   const Eigen::VectorXd& f0,

@@ -11,13 +11,16 @@ namespace {
 
 namespace example = fesd::circle_example;
 
+/// `refine_elements` false: every step on `elements_per_step` elements, the paper's grid.
 fesd::SimulationResult simulate(int stages, int total_elements, bool fesd_on = true,
                                 int elements_per_step = 2,
-                                std::shared_ptr<const fesd::DcsModel> model = example::model()) {
+                                std::shared_ptr<const fesd::DcsModel> model = example::model(),
+                                bool refine_elements = true) {
   fesd::SimulationOptions options;
   options.discretization.num_stages = stages;
   options.discretization.num_elements = elements_per_step;
   options.discretization.switch_detection = fesd_on;
+  options.refine_elements = refine_elements;
   fesd::FesdIntegrator integrator(std::move(model), options);
   return integrator.simulate(example::initialState(), example::horizon(),
                              total_elements / elements_per_step);
@@ -96,7 +99,7 @@ TEST(CircleExample, StandardMethodStaysAtLowOrder) {
 
 TEST(CircleExample, StepEquilibrationKeepsStepsEqualAwayFromSwitches) {
   const int per_step = 4;
-  const fesd::SimulationResult result = simulate(2, 20, true, per_step);
+  const fesd::SimulationResult result = simulate(2, 20, true, per_step, example::model(), false);
   ASSERT_EQ(result.status, fesd::SolveStatus::kSuccess) << result.message;
   const double h0 = example::horizon() / 20;
   int steps_with_switch = 0, steps_without = 0;

@@ -51,7 +51,7 @@ TEST(HardCaseContinuity, EndStateIsContinuousAndTheGridJumpsOnlyWhereTheSwitchAp
   std::vector<Sample> samples;
   double worst_end_error = 0.0, worst_switch_time_error = 0.0;
   for (double x0 : starts) {
-    const auto run = hard_cases::simulateTwice(model, hard_cases::fesdOptions(2, 2),
+    const auto run = hard_cases::simulateTwice(model, hard_cases::fixedElementCountOptions(2, 2),
                                                Eigen::VectorXd::Constant(1, x0), kHorizon, 1);
     ASSERT_TRUE(hard_cases::isHealthy(run, 1e-9)) << "x0 = " << x0;
     const fesd::Trajectory& trajectory = run.result.trajectory;

@@ -16,8 +16,8 @@ struct ReleaseRun {
 
 ReleaseRun simulateRelease(const hard_cases::DiscRelease& problem, int steps) {
   ReleaseRun r{
-      hard_cases::simulateTwice(problem.model(), hard_cases::fesdOptions(2, 2), problem.start(),
-                                problem.horizon(), steps, {problem.velocity()}),
+      hard_cases::simulateTwice(problem.model(), hard_cases::fixedElementCountOptions(2, 2),
+                                problem.start(), problem.horizon(), steps, {problem.velocity()}),
       0.0, 0.0};
   const fesd::Trajectory& trajectory = r.run.result.trajectory;
   r.grid_error = hard_cases::maxGridError(trajectory, [&](double t) { return problem.exact(t); });

@@ -26,6 +26,13 @@ bool exact(const MpccReport& report, const RelaxedMpcc& nlp) {
   return report.converged() && (report.polished || nlp.numComplementarities() == 0);
 }
 
+/// Whether some element of a part's trajectory piece is longer than `stretch` times `nominal`.
+bool stretched(const Trajectory& piece, double nominal, double stretch) {
+  return std::any_of(
+      piece.elements.begin(), piece.elements.end(),
+      [&](const ElementValues& element) { return element.step > stretch * nominal; });
+}
+
 /// How good a step's solution is: exact, converged, or neither.
 int rank(const MpccReport& report, const RelaxedMpcc& nlp) {
   return exact(report, nlp) ? 2 : report.converged() ? 1 : 0;
@@ -58,15 +65,19 @@ class FesdIntegrator::Run {
   }
 
   const std::string& failure() const { return failure_; }
-  const Discretization& discretization() { return *partOf(0, 0, true).discretization; }
+  const Discretization& discretization() { return *partOf(0, 0, kSwitchDetection).discretization; }
   double wallSeconds() const { return stopwatch_.wallSeconds(); }
   double cpuSeconds() const { return stopwatch_.cpuSeconds(); }
 
   SimulationResult result;
 
  private:
+  /// How a part is discretised: with switch detection (FESD, if the options have it), the same
+  /// with twice the elements, or with fixed steps.
+  enum Kind { kSwitchDetection, kRefined, kFixedSteps };
   struct Part {
     double length;
+    int num_elements;
     std::unique_ptr<Discretization> discretization;
     std::vector<double> previous_solution;
   };
@@ -83,9 +94,10 @@ class FesdIntegrator::Run {
   /// that cannot be split any further and does not converge is integrated with fixed steps.
   /// False when it stops the simulation.
   bool solve(int tenths, int middles, const Eigen::VectorXd& u, double start_time) {
-    Part& part = partOf(tenths, middles, true);
+    Part& part = partOf(tenths, middles, kSwitchDetection);
     Attempt attempt = solvePart(part, u, start_time);
     const bool can_split = tenths + middles < options_.max_step_splits;
+    refineIfNeeded(part, tenths, middles, u, start_time, !can_split, attempt);
     const bool timed_out = attempt.report.status == SolveStatus::kTimeout;
     if (can_split && !timed_out && !exact(attempt.report, part.discretization->nlp())) {
       result.totals.addEffort(attempt.report);  // the attempts on the whole part count too
@@ -102,7 +114,7 @@ class FesdIntegrator::Run {
       // A tiny part (1e-4 h after four levels) that still holds more switches than FESD can
       // place, e.g. a contact and a release 2e-6 apart: fixed steps keep the simulation going
       // at an error of the order of the part's length, and its switches are flagged unresolved.
-      Attempt fixed = solvePart(partOf(tenths, middles, false), u, start_time);
+      Attempt fixed = solvePart(partOf(tenths, middles, kFixedSteps), u, start_time);
       fixed.report.addEffort(attempt.report);
       if (fixed.report.converged()) {
         attempt = std::move(fixed);
@@ -119,6 +131,33 @@ class FesdIntegrator::Run {
     result.status = attempt.report.status;
     failure_ = attempt.report.message;
     return false;
+  }
+
+  /// SimulationOptions::refine_elements: the part on twice the elements replaces a solution that
+  /// is exact but stretched, or not exact where `last_resort` (the part cannot be split), if its
+  /// own solution is exact and not stretched.
+  void refineIfNeeded(const Part& part, int tenths, int middles, const Eigen::VectorXd& u,
+                      double start_time, bool last_resort, Attempt& attempt) {
+    const bool is_exact = exact(attempt.report, part.discretization->nlp());
+    const double nominal = part.length / part.num_elements;
+    const bool needed =
+        is_exact ? stretched(attempt.piece, nominal, options_.max_element_stretch) : last_resort;
+    if (!options_.refine_elements || attempt.report.status == SolveStatus::kTimeout || !needed) {
+      return;
+    }
+    Part& refined_part = partOf(tenths, middles, kRefined);
+    Attempt refined = solvePart(refined_part, u, start_time);
+    // Kept only within the stretch bound of the coarser elements: a refined part whose switches
+    // took several boundaries can leave an element longer than that.
+    if (exact(refined.report, refined_part.discretization->nlp()) &&
+        !stretched(refined.piece, nominal, options_.max_element_stretch)) {
+      refined.report.addEffort(attempt.report);
+      refined.retried = refined.retried || attempt.retried;
+      attempt = std::move(refined);
+      ++result.refined_parts;
+    } else {
+      attempt.report.addEffort(refined.report);
+    }
   }
 
   /// One part from the current state: the homotopy, and its retry path if that is not exact.
@@ -154,17 +193,18 @@ class FesdIntegrator::Run {
     return attempt;
   }
 
-  /// The part of that length with switch detection (FESD, if the options have it) or with
-  /// fixed steps, built when first needed.
-  Part& partOf(int tenths, int middles, bool switch_detection) {
-    const auto key = std::make_tuple(tenths, middles, switch_detection);
+  /// The part of that length and kind, built when first needed.
+  Part& partOf(int tenths, int middles, Kind kind) {
+    const auto key = std::make_tuple(tenths, middles, kind);
     const auto found = parts_.find(key);
     if (found != parts_.end()) return found->second;
     OcpDefinition problem = step_problem_;
     problem.horizon *= std::pow(0.1, tenths) * std::pow(0.4, middles);
     DiscretizationOptions discretization = options_.discretization;
-    discretization.switch_detection = discretization.switch_detection && switch_detection;
-    Part part{problem.horizon, discretize(problem, discretization), {}};
+    discretization.switch_detection = discretization.switch_detection && kind != kFixedSteps;
+    if (kind == kRefined) discretization.num_elements *= 2;
+    Part part{
+        problem.horizon, discretization.num_elements, discretize(problem, discretization), {}};
     return parts_.emplace(key, std::move(part)).first->second;
   }
 
@@ -181,8 +221,8 @@ class FesdIntegrator::Run {
   MpccSolver solver_, retry_solver_;
   Eigen::VectorXd state_;
   Eigen::VectorXd previous_control_;  ///< of the last part in the trajectory
-  /// By (tenths, middles, switch detection); a map's references stay valid as parts are added.
-  std::map<std::tuple<int, int, bool>, Part> parts_;
+  /// By (tenths, middles, kind); a map's references stay valid as parts are added.
+  std::map<std::tuple<int, int, Kind>, Part> parts_;
   bool split_ = false;  ///< the current step was split
   std::string failure_;
 };
@@ -222,6 +262,9 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
             << " Ipopt iterations, " << result.trajectory.switches.size() << " switch(es)";
     if (result.retried_steps > 0) message << ", " << result.retried_steps << " step(s) retried";
     if (result.split_steps > 0) message << ", " << result.split_steps << " step(s) split";
+    if (result.refined_parts > 0) {
+      message << ", " << result.refined_parts << " part(s) refined";
+    }
     result.message = message.str();
   }
   if (!result.trajectory.switchesResolved()) {
