@@ -90,6 +90,13 @@ fesd::PdsStepEquilibration pdsStepEquilibration(const Arguments& args) {
   throw std::invalid_argument("--pds-equilibration takes polishing or big-m");
 }
 
+fesd::SimulationOptions refinementArguments(const Arguments& args, bool refine_by_default) {
+  fesd::SimulationOptions options;
+  options.refine_elements = args.integer("refine-elements", refine_by_default ? 1 : 0) != 0;
+  options.max_element_stretch = args.number("max-element-stretch", options.max_element_stretch);
+  return options;
+}
+
 void applyHomotopyArguments(const Arguments& args, fesd::HomotopyOptions& options) {
   options.sigma_initial = args.number("sigma0", options.sigma_initial);
   options.sigma_reduction = args.number("kappa", options.sigma_reduction);

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "fesd_trajopt/core/fesd_integrator.h"
 #include "fesd_trajopt/core/mpcc_solver.h"
 #include "fesd_trajopt/core/ocp_definition.h"
 
@@ -39,6 +40,11 @@ bool startsFromPlan(const Arguments& args);
 
 /// --pds-equilibration=polishing|big-m: how a PDS discretisation imposes step equilibration.
 fesd::PdsStepEquilibration pdsStepEquilibration(const Arguments& args);
+
+/// Integrator options with --refine-elements=0|1 and --max-element-stretch applied
+/// (SimulationOptions::refine_elements). The order benches keep the papers' fixed element counts
+/// unless asked, since a refined part would leave the h axis.
+fesd::SimulationOptions refinementArguments(const Arguments& args, bool refine_by_default);
 
 /// Homotopy and Ipopt settings from --sigma0, --kappa, --max-steps, --relaxed-tolerance-factor,
 /// --ipopt-tol,

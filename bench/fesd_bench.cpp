@@ -55,7 +55,8 @@ const std::map<std::string, Command>& commands() {
         "    Gauss-Legendre, CSV. --radau-stages=1,2,3 --gauss-stages=1,2\n"
         "    --totals=16,24,32,48,64,96,128 --elements=2 (per step) --methods=fesd,standard\n"
         "    --kappa=0.01 (homotopy) --equilibration=indicator|tanh|none\n"
-        "    --equilibration-relaxation=1e6 (r of |dh/h0 eta| <= r sigma)"}},
+        "    --equilibration-relaxation=1e6 (r of |dh/h0 eta| <= r sigma)\n"
+        "    --refine-elements=0 (1: refine stretched elements) --max-element-stretch=1.05"}},
       {"ocp-filippov",
        {fesd_bench::ocpFilippov,
         "OCP (61) (seed 001), two sliding surfaces: terminal error of a fine re-simulation of\n"
@@ -84,7 +85,8 @@ const std::map<std::string, Command>& commands() {
         "    --methods=fesd,standard --repeat=1 (timing: best of N) --profile (iterations per\n"
         "    homotopy level) --sigma0=1 --kappa=0.01 (homotopy) "
         "--pds-equilibration=polishing|big-m --big-m=1e9\n"
-        "    --comp-tol=1e-9 --cross=sums|pairs (cross-complementarity form) --polish=true"}},
+        "    --comp-tol=1e-9 --cross=sums|pairs (cross-complementarity form) --polish=true\n"
+        "    --refine-elements=0 (1: refine stretched elements) --max-element-stretch=1.05"}},
   };
   return table;
 }

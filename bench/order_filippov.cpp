@@ -21,6 +21,7 @@ int orderFilippov(const Arguments& args) {
   const fesd::StepEquilibration equilibration = stepEquilibration(args);
   const double relaxation = args.number("equilibration-relaxation",
                                         defaults.discretization.filippov_equilibration_relaxation);
+  const fesd::SimulationOptions refinement = refinementArguments(args, false);
   args.rejectUnused();
 
   namespace example = fesd::spiral_example;
@@ -38,7 +39,7 @@ int orderFilippov(const Arguments& args) {
           if (total % elements != 0) {
             throw std::invalid_argument("--totals must be multiples of --elements");
           }
-          fesd::SimulationOptions options;
+          fesd::SimulationOptions options = refinement;
           options.discretization.family = family;
           options.discretization.num_stages = ns;
           options.discretization.num_elements = elements;

@@ -68,6 +68,7 @@ int orderPds(const Arguments& args) {
     throw std::invalid_argument("--cross takes sums or pairs");
   }
   const bool polish = args.flag("polish", defaults.homotopy.polish_active_set);
+  const fesd::SimulationOptions refinement = refinementArguments(args, false);
   args.rejectUnused();
 
   std::cout << "method,scheme,n_s,n_fe_total,h,error,switch_time_error,cpu_s,wall_s,status\n";
@@ -81,7 +82,7 @@ int orderPds(const Arguments& args) {
         if (total % elements != 0) {
           throw std::invalid_argument("--totals must be multiples of --elements");
         }
-        fesd::SimulationOptions options;
+        fesd::SimulationOptions options = refinement;
         options.discretization.num_stages = ns;
         options.discretization.num_elements = elements;
         options.discretization.switch_detection = method == "fesd";

@@ -19,9 +19,7 @@ int simulationSweep(const Arguments& args) {
   const std::vector<int> stages = args.integers("stages", {1, 2, 3, 4});
   const std::vector<int> grids = args.integers("steps", ps::sweepGrids());
   const int elements = args.integer("elements", 2);
-  const bool refine_elements = args.integer("refine-elements", 1) != 0;
-  const double max_element_stretch =
-      args.number("max-element-stretch", fesd::SimulationOptions().max_element_stretch);
+  const fesd::SimulationOptions refinement = refinementArguments(args, true);
   // 161 = 7 * 23 shares no step boundary with any sweep grid: a reference that steps exactly
   // where a grid does could share that grid's error (measured: a release 3.5e-5 before a
   // common boundary, 5.9e-8 in both).
@@ -47,11 +45,9 @@ int simulationSweep(const Arguments& args) {
     for (const int n_s : stages) {
       std::vector<double> errors;
       for (const int steps : grids) {
-        fesd::SimulationOptions options;
+        fesd::SimulationOptions options = refinement;
         options.discretization.num_stages = n_s;
         options.discretization.num_elements = elements;
-        options.refine_elements = refine_elements;
-        options.max_element_stretch = max_element_stretch;
         options.wall_time_budget = budget;
         const fesd::SimulationResult result = ps::simulate(scene, steps, options);
         const bool ok = result.status == fesd::SolveStatus::kSuccess;
