@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "fesd_trajopt/core/fesd_integrator.h"
-#include "fesd_trajopt/core/mpcc_solver.h"
-#include "fesd_trajopt/core/ocp_definition.h"
+#include "fesd_trajopt/discretization/discretization_options.h"
+#include "fesd_trajopt/integrator/fesd_integrator.h"
+#include "fesd_trajopt/solver/mpcc_solver.h"
 
 namespace fesd_bench {
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "fesd_trajopt/core/circle_example.h"
+#include "fesd_trajopt/examples/circle_example.h"
 
 namespace fesd_bench {
 namespace {

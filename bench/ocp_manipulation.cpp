@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "commands.h"
-#include "fesd_trajopt/core/manipulation_example.h"
-#include "fesd_trajopt/core/ocp_solver.h"
+#include "fesd_trajopt/examples/manipulation_example.h"
+#include "fesd_trajopt/ocp/ocp_solver.h"
 
 namespace fesd_bench {
 namespace {

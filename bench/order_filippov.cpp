@@ -5,8 +5,8 @@
 #include <limits>
 
 #include "commands.h"
-#include "fesd_trajopt/core/fesd_integrator.h"
-#include "fesd_trajopt/core/filippov_examples.h"
+#include "fesd_trajopt/examples/filippov_examples.h"
+#include "fesd_trajopt/integrator/fesd_integrator.h"
 
 namespace fesd_bench {
 

@@ -7,8 +7,8 @@
 #include <map>
 
 #include "commands.h"
-#include "fesd_trajopt/core/circle_example.h"
-#include "fesd_trajopt/core/fesd_integrator.h"
+#include "fesd_trajopt/examples/circle_example.h"
+#include "fesd_trajopt/integrator/fesd_integrator.h"
 
 namespace fesd_bench {
 namespace {

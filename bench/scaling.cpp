@@ -4,11 +4,11 @@
 #include <string>
 
 #include "commands.h"
-#include "fesd_trajopt/core/manipulation_example.h"
-#include "fesd_trajopt/core/moving_part.h"
-#include "fesd_trajopt/core/ocp_solver.h"
-#include "fesd_trajopt/core/push_plan.h"
-#include "fesd_trajopt/core/scene_task.h"
+#include "fesd_trajopt/examples/manipulation_example.h"
+#include "fesd_trajopt/ocp/ocp_solver.h"
+#include "fesd_trajopt/scene/moving_part.h"
+#include "fesd_trajopt/scene/push_plan.h"
+#include "fesd_trajopt/scene/scene_task.h"
 
 namespace fesd_bench {
 namespace {

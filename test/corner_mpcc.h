@@ -1,8 +1,8 @@
 #pragma once
 
-#include "fesd_trajopt/core/mpcc_solver.h"
-#include "fesd_trajopt/core/nlp_assembly.h"
-#include "fesd_trajopt/core/quadratic_function.h"
+#include "fesd_trajopt/function/quadratic_function.h"
+#include "fesd_trajopt/nlp/nlp_assembly.h"
+#include "fesd_trajopt/solver/mpcc_solver.h"
 
 namespace fesd_test {
 

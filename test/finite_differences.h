@@ -6,8 +6,8 @@
 
 #include <Eigen/Dense>
 
-#include "fesd_trajopt/core/nlp_problem.h"
-#include "fesd_trajopt/core/smooth_function.h"
+#include "fesd_trajopt/function/smooth_function.h"
+#include "fesd_trajopt/nlp/nlp_problem.h"
 
 namespace fesd_test {
 

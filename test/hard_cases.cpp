@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "fesd_trajopt/core/affine_function.h"
+#include "fesd_trajopt/function/affine_function.h"
 
 namespace hard_cases {
 

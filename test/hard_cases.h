@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-#include "fesd_trajopt/core/disc_scene.h"
-#include "fesd_trajopt/core/fesd_integrator.h"
+#include "fesd_trajopt/integrator/fesd_integrator.h"
+#include "fesd_trajopt/scene/disc_scene.h"
 
 /// Shared tools of the numerical hard-case tests (test_hard_cases_*.cpp): small models, a
 /// simulation run twice to check determinism, and the checks every case makes.

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/core/butcher_tableau.h"
+#include "fesd_trajopt/discretization/butcher_tableau.h"
 
 namespace {
 

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/core/circle_example.h"
-#include "fesd_trajopt/core/fesd_integrator.h"
+#include "fesd_trajopt/examples/circle_example.h"
+#include "fesd_trajopt/integrator/fesd_integrator.h"
 
 namespace {
 

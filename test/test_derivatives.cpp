@@ -5,12 +5,12 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/core/affine_function.h"
-#include "fesd_trajopt/core/autodiff_model.h"
-#include "fesd_trajopt/core/circle_example.h"
-#include "fesd_trajopt/core/disc_scene.h"
-#include "fesd_trajopt/core/fesd_discretization.h"
-#include "fesd_trajopt/core/quadratic_function.h"
+#include "fesd_trajopt/discretization/fesd_discretization.h"
+#include "fesd_trajopt/examples/circle_example.h"
+#include "fesd_trajopt/function/affine_function.h"
+#include "fesd_trajopt/function/quadratic_function.h"
+#include "fesd_trajopt/model/autodiff_model.h"
+#include "fesd_trajopt/scene/disc_scene.h"
 #include "finite_differences.h"
 
 namespace {

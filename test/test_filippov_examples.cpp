@@ -6,10 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/core/fesd_integrator.h"
-#include "fesd_trajopt/core/filippov_examples.h"
-#include "fesd_trajopt/core/ocp_solver.h"
-#include "fesd_trajopt/core/stewart_discretization.h"
+#include "fesd_trajopt/discretization/stewart_discretization.h"
+#include "fesd_trajopt/examples/filippov_examples.h"
+#include "fesd_trajopt/integrator/fesd_integrator.h"
+#include "fesd_trajopt/ocp/ocp_solver.h"
 
 namespace {
 

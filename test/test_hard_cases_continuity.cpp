@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/core/autodiff_model.h"
+#include "fesd_trajopt/model/autodiff_model.h"
 #include "hard_cases.h"
 
 namespace {

@@ -3,9 +3,9 @@
 // and a message, never with SUCCESS.
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/core/affine_function.h"
-#include "fesd_trajopt/core/ocp_solver.h"
-#include "fesd_trajopt/core/scene_task.h"
+#include "fesd_trajopt/function/affine_function.h"
+#include "fesd_trajopt/ocp/ocp_solver.h"
+#include "fesd_trajopt/scene/scene_task.h"
 
 namespace {
 

@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/core/affine_function.h"
-#include "fesd_trajopt/core/manipulation_example.h"
-#include "fesd_trajopt/core/ocp_solver.h"
-#include "fesd_trajopt/core/quadratic_function.h"
+#include "fesd_trajopt/examples/manipulation_example.h"
+#include "fesd_trajopt/function/affine_function.h"
+#include "fesd_trajopt/function/quadratic_function.h"
+#include "fesd_trajopt/ocp/ocp_solver.h"
 
 namespace {
 

@@ -2,7 +2,7 @@
 // as c and lambda at a simulation step's start point do: such a side cannot be made zero.
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/core/nlp_assembly.h"
+#include "fesd_trajopt/nlp/nlp_assembly.h"
 
 namespace {
 

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/core/manipulation_example.h"
-#include "fesd_trajopt/core/push_plan.h"
+#include "fesd_trajopt/examples/manipulation_example.h"
+#include "fesd_trajopt/scene/push_plan.h"
 
 namespace {
 

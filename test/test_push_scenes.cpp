@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/core/push_scenes.h"
+#include "fesd_trajopt/scene/push_scenes.h"
 #include "hard_cases.h"
 
 namespace {

@@ -9,9 +9,9 @@
 #include <console_bridge/console.h>
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/core/fesd_discretization.h"
-#include "fesd_trajopt/core/moving_part.h"
-#include "fesd_trajopt/core/scene_task.h"
+#include "fesd_trajopt/discretization/fesd_discretization.h"
+#include "fesd_trajopt/scene/moving_part.h"
+#include "fesd_trajopt/scene/scene_task.h"
 #include "fesd_trajopt/scene/urdf_scene.h"
 
 namespace {

@@ -4,10 +4,10 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/core/fesd_integrator.h"
-#include "fesd_trajopt/core/manipulation_example.h"
-#include "fesd_trajopt/core/moving_part.h"
-#include "fesd_trajopt/core/scene_task.h"
+#include "fesd_trajopt/examples/manipulation_example.h"
+#include "fesd_trajopt/integrator/fesd_integrator.h"
+#include "fesd_trajopt/scene/moving_part.h"
+#include "fesd_trajopt/scene/scene_task.h"
 #include "fesd_trajopt/scene/urdf_scene.h"
 
 namespace {

@@ -8,11 +8,11 @@
 #include <gtest/gtest.h>
 
 #include "corner_mpcc.h"
-#include "fesd_trajopt/core/circle_example.h"
-#include "fesd_trajopt/core/fesd_integrator.h"
-#include "fesd_trajopt/core/manipulation_example.h"
-#include "fesd_trajopt/core/ocp_solver.h"
-#include "fesd_trajopt/core/scene_task.h"
+#include "fesd_trajopt/examples/circle_example.h"
+#include "fesd_trajopt/examples/manipulation_example.h"
+#include "fesd_trajopt/integrator/fesd_integrator.h"
+#include "fesd_trajopt/ocp/ocp_solver.h"
+#include "fesd_trajopt/scene/scene_task.h"
 
 namespace {
 

@@ -6,9 +6,9 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/core/filippov_examples.h"
-#include "fesd_trajopt/core/stewart_discretization.h"
-#include "fesd_trajopt/core/stewart_model.h"
+#include "fesd_trajopt/discretization/stewart_discretization.h"
+#include "fesd_trajopt/examples/filippov_examples.h"
+#include "fesd_trajopt/model/stewart_model.h"
 #include "finite_differences.h"
 
 namespace {

@@ -4,11 +4,11 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/core/affine_function.h"
-#include "fesd_trajopt/core/butcher_tableau.h"
-#include "fesd_trajopt/core/circle_example.h"
-#include "fesd_trajopt/core/fesd_integrator.h"
-#include "fesd_trajopt/core/ocp_solver.h"
+#include "fesd_trajopt/discretization/butcher_tableau.h"
+#include "fesd_trajopt/examples/circle_example.h"
+#include "fesd_trajopt/function/affine_function.h"
+#include "fesd_trajopt/integrator/fesd_integrator.h"
+#include "fesd_trajopt/ocp/ocp_solver.h"
 
 namespace {
 

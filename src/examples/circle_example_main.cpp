@@ -5,8 +5,8 @@
 #include <exception>
 #include <string>
 
-#include "fesd_trajopt/core/circle_example.h"
-#include "fesd_trajopt/core/fesd_integrator.h"
+#include "fesd_trajopt/examples/circle_example.h"
+#include "fesd_trajopt/integrator/fesd_integrator.h"
 
 namespace {
 

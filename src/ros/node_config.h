@@ -5,7 +5,7 @@
 
 #include <ros/node_handle.h>
 
-#include "fesd_trajopt/core/scene_task.h"
+#include "fesd_trajopt/scene/scene_task.h"
 
 namespace fesd_ros {
 

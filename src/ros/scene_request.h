@@ -9,7 +9,7 @@
 #include <fesd_trajopt/Wall.h>
 #include <ros/node_handle.h>
 
-#include "fesd_trajopt/core/scene_task.h"
+#include "fesd_trajopt/scene/scene_task.h"
 #include "node_config.h"
 
 namespace fesd_ros {

@@ -4,9 +4,9 @@
 #include <fesd_trajopt/SolveTrajectory.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include "fesd_trajopt/core/mpcc_solver.h"
-#include "fesd_trajopt/core/scene_task.h"
-#include "fesd_trajopt/core/trajectory.h"
+#include "fesd_trajopt/discretization/trajectory.h"
+#include "fesd_trajopt/scene/scene_task.h"
+#include "fesd_trajopt/solver/mpcc_solver.h"
 
 namespace fesd_ros {
 

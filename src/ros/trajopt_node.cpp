@@ -4,12 +4,12 @@
 #include <cmath>
 #include <exception>
 
-#include "fesd_trajopt/core/circle_example.h"
-#include "fesd_trajopt/core/fesd_integrator.h"
-#include "fesd_trajopt/core/moving_part.h"
-#include "fesd_trajopt/core/ocp_solver.h"
-#include "fesd_trajopt/core/push_plan.h"
-#include "fesd_trajopt/core/stopwatch.h"
+#include "fesd_trajopt/examples/circle_example.h"
+#include "fesd_trajopt/integrator/fesd_integrator.h"
+#include "fesd_trajopt/ocp/ocp_solver.h"
+#include "fesd_trajopt/scene/moving_part.h"
+#include "fesd_trajopt/scene/push_plan.h"
+#include "fesd_trajopt/solver/stopwatch.h"
 #include "scene_request.h"
 #include "solution_message.h"
 

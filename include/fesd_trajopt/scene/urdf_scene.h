@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "fesd_trajopt/core/disc_scene.h"
+#include "fesd_trajopt/scene/disc_scene.h"
 
 namespace fesd {
 

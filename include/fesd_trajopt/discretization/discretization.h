@@ -1,0 +1,65 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "fesd_trajopt/discretization/discretization_options.h"
+#include "fesd_trajopt/discretization/trajectory.h"
+#include "fesd_trajopt/discretization/trajectory_guess.h"
+#include "fesd_trajopt/model/ocp_definition.h"
+#include "fesd_trajopt/nlp/nlp_assembly.h"
+
+namespace fesd {
+
+/// A discretisation of an OcpDefinition as a relaxable MPCC, as the integrator and the OCP
+/// solver use it, whatever the model kind: the NLP, guesses, and reading the solution.
+class Discretization {
+ public:
+  virtual ~Discretization() = default;
+
+  virtual NlpAssembly& nlp() = 0;
+  virtual const NlpAssembly& nlp() const = 0;
+  /// True when element lengths are free (FESD on and something can switch).
+  virtual bool stepsAreFree() const = 0;
+
+  /// Fixes the start state.
+  virtual void setInitialState(const Eigen::VectorXd& x0) = 0;
+  /// Takes over what the next simulation step needs from the end of the previous one.
+  /// `same_dynamics`: the right-hand side continues unchanged into this step (same control), so
+  /// a contact force cannot jump down at its start (seed 000, Proposition 2).
+  virtual void continueFrom(const Trajectory& previous, bool same_dynamics) = 0;
+  /// Fixes the control of interval k to u (simulation).
+  virtual void fixControl(int interval, const Eigen::VectorXd& u) = 0;
+
+  /// Every state at the start state, nominal steps, the given controls (clipped to their
+  /// bounds; empty means 0), algebraic variables consistent with the start state.
+  virtual std::vector<double> constantGuess(
+      const std::vector<Eigen::VectorXd>& controls = {}) const = 0;
+  /// A previous, equally structured solution moved to the current start state.
+  virtual std::vector<double> translatedGuess(
+      const std::vector<double>& previous_solution) const = 0;
+  /// The guess's states, multipliers and controls (clipped to their bounds) at the stage points
+  /// of the nominal grid; the rest consistent with them.
+  virtual std::vector<double> guessFrom(const TrajectoryGuess& guess) const = 0;
+  /// A solution of a discretisation of the same OCP on the same grid (e.g. the standard
+  /// method's) as a guess for this one.
+  virtual std::vector<double> adoptedGuess(const Discretization& other,
+                                           const std::vector<double>& solution) const = 0;
+
+  /// Reads the trajectory (times, states, stage values, controls, switches, unresolved switches)
+  /// from a solution.
+  virtual Trajectory extract(const double* x, double start_time = 0.0,
+                             double activity_tolerance = kDefaultActivityTolerance,
+                             double penetration_tolerance = kDefaultPenetrationTolerance) const = 0;
+  /// Which complementarity pairs are active at a state (the classification of a trajectory's
+  /// start for detectSwitches).
+  virtual std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const = 0;
+};
+
+/// The discretisation of `ocp` that its model builds.
+std::unique_ptr<Discretization> discretize(const OcpDefinition& ocp,
+                                           const DiscretizationOptions& options);
+
+}  // namespace fesd

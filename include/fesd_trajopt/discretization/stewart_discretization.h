@@ -1,0 +1,162 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "fesd_trajopt/discretization/butcher_tableau.h"
+#include "fesd_trajopt/discretization/collocation_grid.h"
+#include "fesd_trajopt/discretization/discretization.h"
+#include "fesd_trajopt/model/stewart_model.h"
+
+namespace fesd {
+
+/// The switch indicator of step equilibration (seed 001, eq. 31) at the boundary between two
+/// elements, on blocks of n_f values (lambda or theta at a point):
+///   eta = prod_i (sum_B lambda_i sum_F lambda_i + sum_B theta_i sum_F theta_i),
+/// B over the earlier element's closure, F over the later one's. The sums list block positions;
+/// the lambda block at the common boundary belongs to both.
+struct SwitchIndicator {
+  int nf;
+  std::vector<int> lambda_backward, lambda_forward, theta_backward, theta_forward;
+
+  template <class T>
+  T sum(const T* blocks, const std::vector<int>& positions, int mode) const {
+    T total = blocks[positions[0] * nf + mode];
+    for (size_t p = 1; p < positions.size(); ++p) total += blocks[positions[p] * nf + mode];
+    return total;
+  }
+  template <class T>
+  T factor(const T* blocks, int mode) const {
+    return sum(blocks, lambda_backward, mode) * sum(blocks, lambda_forward, mode) +
+           sum(blocks, theta_backward, mode) * sum(blocks, theta_forward, mode);
+  }
+  template <class T>
+  T operator()(const T* blocks) const {
+    T eta = factor(blocks, 0);
+    for (int i = 1; i < nf; ++i) eta *= factor(blocks, i);
+    return eta;
+  }
+};
+
+/// The FESD (or, with switch detection off, the standard fixed-step) discretisation of an
+/// OcpDefinition on a Filippov system in Stewart's form (seed 001, Sec. 3) as a relaxable MPCC:
+///  - collocation equations of every finite element for xdot = F(x, u) theta (eq. 25), and for
+///    a scheme with c_ns != 1 (Gauss-Legendre) the element's end state x_n + h sum_i b_i v_i,
+///  - at every stage point g(x) - lambda - mu e = 0 and e^T theta^k = 1 per subsystem,
+///  - standard method: theta _|_ lambda at every stage point,
+///  - FESD: free steps summing to each control interval's length; (lambda, mu) at element
+///    boundaries (eq. 27: the last stage's for Radau-IIA; for c_ns != 1 a boundary point with
+///    g(x_n) - lambda - mu e = 0, lambda >= 0, Sec. 3.2.5 / 4.2.1, at every boundary including
+///    the last; the start's likewise);
+///    cross-complementarity (eq. 28/29) between an element's stage theta and every lambda of
+///    its closure; step equilibration (eq. 31) |((h_n - h_{n-1}) / h0) eta_n| <= sigma relaxed
+///    with the complementarity, with the indicator eta_n or tanh(eta_n),
+///  - costs by the RK quadrature, control/state bounds, path and terminal constraints.
+/// In the complementarity-pair terms of a Trajectory, theta plays the multiplier and lambda
+/// the constraint value: mode i is active in an element when its theta_i outweighs lambda_i.
+class StewartDiscretization : public Discretization {
+ public:
+  StewartDiscretization(OcpDefinition ocp, DiscretizationOptions options);
+  // The NLP's active-set hook refers to this object: it stays where it was built.
+  StewartDiscretization(const StewartDiscretization&) = delete;
+  StewartDiscretization& operator=(const StewartDiscretization&) = delete;
+
+  NlpAssembly& nlp() override { return nlp_; }
+  const NlpAssembly& nlp() const override { return nlp_; }
+  bool stepsAreFree() const override { return steps_free_; }
+  const OcpDefinition& ocp() const { return ocp_; }
+  const DiscretizationOptions& options() const { return options_; }
+  const ButcherTableau& tableau() const { return tableau_; }
+  const StewartModel& model() const { return *model_; }
+  int numElements() const { return grid_.numElements(); }
+  double nominalStep() const { return nominal_step_; }
+
+  void setInitialState(const Eigen::VectorXd& x0) override;
+  /// Frees the start state within the OCP's initial state bounds again (a free-start OCP).
+  void releaseInitialState();
+  /// Nothing to take over: lambda at the start follows from the start state (eq. 39).
+  void continueFrom(const Trajectory& previous, bool same_dynamics) override {}
+  void fixControl(int interval, const Eigen::VectorXd& u) override;
+
+  std::vector<double> constantGuess(
+      const std::vector<Eigen::VectorXd>& controls = {}) const override;
+  /// The guess's states and controls on the nominal grid, the modes of those states; its
+  /// multipliers are not used.
+  std::vector<double> guessFrom(const TrajectoryGuess& guess) const override;
+  std::vector<double> translatedGuess(const std::vector<double>& previous_solution) const override;
+  std::vector<double> adoptedGuess(const Discretization& other,
+                                   const std::vector<double>& solution) const override;
+
+  Trajectory extract(const double* x, double start_time = 0.0,
+                     double activity_tolerance = kDefaultActivityTolerance,
+                     double penetration_tolerance = kDefaultPenetrationTolerance) const override;
+  /// Modes whose indicator is within tolerance of its subsystem's minimum.
+  std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const override;
+
+  /// The switch indicator eta_n (eq. 31, without tanh) at every element boundary inside a
+  /// control interval, in order; empty without step equilibration.
+  std::vector<double> switchIndicators(const double* x) const;
+
+  int startStateIndex() const { return start_state_; }
+  int stepIndex(int element) const { return grid_.steps[element]; }
+  int controlIndex(int interval) const { return grid_.controls[interval]; }
+
+ private:
+  struct StagePoint {
+    int x = -1, theta = -1, lambda = -1, mu = -1;  ///< first indices
+  };
+  /// (lambda, mu) of Stewart's LP at an element boundary state.
+  struct BoundaryPoint {
+    int lambda = -1, mu = -1;
+  };
+  struct Element {
+    std::vector<StagePoint> stages;
+    int start_state = -1, end_state = -1;
+    BoundaryPoint start;  ///< FESD only
+  };
+  /// The step equilibration of the boundary between two elements of a control interval.
+  struct Equilibration {
+    std::vector<int> inputs;  ///< h_{n-1}, h_n, then the indicator's blocks
+    SwitchIndicator indicator;
+    int relaxed_row, equal_steps_row;
+  };
+
+  void buildVariables();
+  void buildBoundaryPoints();
+  /// (lambda, mu) at a state with lambda = g(x) - mu e >= 0 (eq. 33/39); the
+  /// cross-complementarity then pins mu to min g.
+  BoundaryPoint addBoundaryPoint(int state);
+  void buildDynamics();
+  void buildAlgebraicRows(int state, int theta, int lambda, int mu, bool with_theta);
+  void buildComplementarity();
+  void buildStepEquilibration();
+  /// With the active set fixed (polishing): the relaxed equilibration rows are dropped, and
+  /// h_{n-1} = h_n imposed where eta_n cannot vanish (no switch, seed 001 Sec. 3.2.3).
+  void equilibrateActiveSet();
+  /// The lambda blocks of an element's closure: start boundary, stages, end boundary.
+  std::vector<int> closureLambdas(int element) const;
+  /// Sets (lambda, mu) to the LP multipliers at the state x[state].
+  void setLpMultipliers(std::vector<double>& x, int state, int lambda, int mu) const;
+  void completeBoundaryPoints(std::vector<double>& x) const;
+  /// lambda, mu of the LP at the point's state, and theta on each subsystem's (first) mode
+  /// of smallest indicator.
+  void setModeOfState(std::vector<double>& x, const StagePoint& point) const;
+
+  OcpDefinition ocp_;
+  std::shared_ptr<const StewartModel> model_;
+  DiscretizationOptions options_;
+  ButcherTableau tableau_;
+  int nx_, nu_, nf_, nsys_;
+  double nominal_step_;
+  bool steps_free_;
+  bool stage_at_end_;  ///< c_ns = 1 (Radau-IIA): the last stage is the element's end
+  NlpAssembly nlp_;
+  int start_state_ = -1;
+  CollocationGrid grid_;
+  std::vector<Element> elements_;
+  BoundaryPoint final_boundary_;  ///< at the last element's end, c_ns != 1 only
+  std::vector<Equilibration> equilibration_;
+  int core_variables_ = 0;
+};
+
+}  // namespace fesd

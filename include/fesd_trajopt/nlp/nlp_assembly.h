@@ -1,0 +1,172 @@
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "fesd_trajopt/nlp/nlp_problem.h"
+
+namespace fesd {
+
+/// One variable and its coefficient in a linear expression.
+struct LinearTerm {
+  int variable;
+  double coefficient;
+};
+using LinearExpression = std::vector<LinearTerm>;
+
+/// Maps matrix coordinates to slots of a value array, merging repeated coordinates.
+class SlotMap {
+ public:
+  int slot(int row, int col);
+  const SparsityPattern& pattern() const { return pattern_; }
+
+ private:
+  SparsityPattern pattern_;
+  std::unordered_map<long long, int> index_;
+};
+
+/// A sparse NLP assembled from three kinds of pieces:
+///  - linear parts of rows (constant Jacobian entries),
+///  - bilinear rows (a^T x)(b^T x), used for (relaxed) complementarity constraints,
+///  - function terms: coefficient * [scale variable] * F(z) added to rows or to the objective,
+///    where F is a SmoothFunction evaluated at a vector z of variables.
+/// Patterns and value slots are fixed by finalize(); evaluation then only writes into slots.
+/// Bounds and the relaxation may change between solves without changing the structure.
+class NlpAssembly : public RelaxedMpcc {
+ public:
+  static constexpr int kObjective = -1;  ///< "row" of a function term that feeds the objective
+  static constexpr double kInfinity = 1e20;
+  /// A fixed variable (data, or a side fixed by fixActiveSet) of at most this size counts as
+  /// zero in active-set decisions: c(x) at a point on a curved boundary is zero only to rounding.
+  static constexpr double kNegligibleFixedValue = 1e-9;
+
+  /// Adds `count` variables with common bounds and initial value; returns the first index.
+  int addVariables(int count, double lower, double upper, double initial = 0.0);
+  /// Adds `count` rows with common bounds; returns the first index.
+  int addRows(int count, double lower, double upper);
+  /// Adds `count` equality rows relaxed like the complementarity:
+  /// -scale * sigma <= g <= scale * sigma.
+  int addRelaxedRows(int count, double scale = 1.0);
+  void addLinear(int row, int variable, double coefficient);
+  void addLinear(int row, const LinearExpression& expression);
+  /// Adds the row (left^T x)(right^T x) <= sigma, counted as a complementarity constraint.
+  /// Active-set decisions compare the sides as left_weight left^T x against
+  /// right_weight right^T x (the weights bring them to one unit).
+  int addComplementarity(const LinearExpression& left, const LinearExpression& right,
+                         double left_weight = 1.0, double right_weight = 1.0);
+  /// Adds sum_targets coefficient * x[scale_variable] * F(x[inputs]) to rows
+  /// [target_row, target_row + F.outputSize()) or to the objective (target_row = kObjective).
+  /// scale_variable < 0 means a scale of one.
+  struct Target {
+    int row;
+    double coefficient;
+    bool scaled_by_relaxation = false;  ///< coefficient * sigma: a term that vanishes with sigma
+  };
+  void addFunctionTerm(std::shared_ptr<const SmoothFunction> function, std::vector<int> inputs,
+                       int scale_variable, std::vector<Target> targets);
+  void finalize();
+
+  void setVariableBounds(int variable, double lower, double upper);
+  void setRowBounds(int row, double lower, double upper);
+  /// Called at the end of fixActiveSet with the point it was given; may change any bounds,
+  /// which releaseActiveSet restores with the rest.
+  void setActiveSetHook(std::function<void(const double* x)> hook) { hook_ = std::move(hook); }
+
+  double variableLower(int variable) const { return x_lower_[variable]; }
+  double variableUpper(int variable) const { return x_upper_[variable]; }
+  std::vector<double>& initialGuess() { return initial_; }
+  const std::vector<double>& initialGuess() const { return initial_; }
+  double relaxation() const { return sigma_; }
+
+  // NlpProblem / RelaxedMpcc
+  int numVariables() const override { return static_cast<int>(x_lower_.size()); }
+  int numConstraints() const override { return static_cast<int>(g_lower_.size()); }
+  void getBounds(double* x_lower, double* x_upper, double* g_lower, double* g_upper) const override;
+  double objective(const double* x) const override;
+  void objectiveGradient(const double* x, double* gradient) const override;
+  void constraints(const double* x, double* g) const override;
+  const SparsityPattern& jacobianPattern() const override { return jacobian_slots_.pattern(); }
+  void jacobian(const double* x, double* values) const override;
+  const SparsityPattern& hessianPattern() const override { return hessian_slots_.pattern(); }
+  void hessian(const double* x, double objective_factor, const double* multipliers,
+               double* values) const override;
+  void setRelaxation(double sigma) override;
+  void setVanishingTermsWeight(double weight) override { vanishing_weight_ = weight; }
+  int numComplementarities() const override {
+    return static_cast<int>(complementarity_rows_.size());
+  }
+  const std::vector<int>& complementarityRows() const override { return complementarity_rows_; }
+  double complementarityResidual(const double* x) const override;
+  std::vector<bool> identifyActiveSet(const double* x) const override;
+  bool fixActiveSet(const double* x, int flip = -1) override;
+  bool fixGivenActiveSet(const std::vector<bool>& left_is_zero, const double* x) override;
+  std::vector<bool> flipBiactivePairs(const double* x) const override;
+  void releaseActiveSet() override;
+  double biactiveDescent(const double* x, const double* multipliers) const override;
+
+ private:
+  struct LinearEntry {
+    int row, variable;
+    double coefficient;
+    int slot = -1;
+  };
+  struct Complementarity {
+    int row;
+    LinearExpression left, right;
+    double left_weight, right_weight;
+    std::vector<int> left_slots, right_slots;  // Jacobian
+    std::vector<int> pair_slots;               // Hessian, left-major
+  };
+  struct FunctionTerm {
+    std::shared_ptr<const SmoothFunction> function;
+    std::vector<int> inputs;
+    int scale_variable;
+    std::vector<Target> targets;
+    std::vector<int> jacobian_slots;        // per target, per Jacobian entry
+    std::vector<int> scale_jacobian_slots;  // per target, per output
+    std::vector<int> hessian_slots;         // per Hessian entry
+    std::vector<int> scale_hessian_slots;   // per input (-1 when F does not depend on it)
+  };
+  /// The active set fixActiveSet would fix at x: per pair whether the left side is the zero
+  /// one, and how ambiguous the choice is (min/max of the two sides; 0 when data decides).
+  struct ActiveSetChoice {
+    bool valid = true;  ///< false when some pair has fixed nonzero data on both sides
+    std::vector<bool> left_is_zero;
+    std::vector<double> ambiguity;
+  };
+  ActiveSetChoice chooseActiveSet(const double* x) const;
+  static double evaluateLinear(const LinearExpression& expression, const double* x);
+  void checkNotFinalized() const;
+  void checkFinalized() const;
+  /// Weights w_r = sum_t coefficient_t * multiplier(row_t + r) of one term's outputs.
+  void termWeights(const FunctionTerm& term, double objective_factor, const double* multipliers,
+                   double* weights) const;
+  double coefficient(const Target& target) const {
+    return target.scaled_by_relaxation ? target.coefficient * sigma_ * vanishing_weight_
+                                       : target.coefficient;
+  }
+
+  std::vector<double> x_lower_, x_upper_, initial_, g_lower_, g_upper_;
+  std::vector<LinearEntry> linear_;
+  std::vector<Complementarity> complementarities_;
+  std::vector<int> complementarity_rows_;
+  std::vector<std::pair<int, double>> relaxed_rows_;  ///< row, scale
+  std::vector<FunctionTerm> terms_;
+  SlotMap jacobian_slots_, hessian_slots_;
+  double sigma_ = 0.0;
+  double vanishing_weight_ = 1.0;
+  bool finalized_ = false;
+  /// Bounds before fixActiveSet (empty: not fixed).
+  std::vector<double> saved_x_lower_, saved_x_upper_, saved_g_lower_, saved_g_upper_;
+  /// Per pair while an active set is fixed: whether its left side is the one fixed to zero.
+  std::vector<bool> fixed_left_;
+  std::function<void(const double* x)> hook_;
+  // Scratch buffers sized to the largest function term (evaluation is single-threaded per NLP).
+  mutable std::vector<double> scratch_values_, scratch_jacobian_, scratch_hessian_,
+      scratch_weights_, scratch_inputs_;
+};
+
+}  // namespace fesd

@@ -1,0 +1,43 @@
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "fesd_trajopt/discretization/trajectory_guess.h"
+#include "fesd_trajopt/scene/scene_task.h"
+
+namespace fesd {
+
+/// An actuated body pushing a passive one: during the push it sits at pushed + offset,
+/// |offset| = the sum of their radii, i.e. exactly in contact.
+struct PushAssignment {
+  int pusher, pushed;  ///< body indices in the task
+  Eigen::VectorXd offset;
+};
+
+/// A first guess for a scene task's OCP from a plan in three phases shared by all bodies:
+/// approach (the pushers move straight to their pushing poses), push (every passive body with a
+/// target moves straight to it, its pushers with it), return (the pushers move straight to
+/// their own targets). The phase lengths are those of least control effort for this motion
+/// (tau_phase ~ the root of the phase's summed squared displacements of control). Bodies
+/// without a push move straight to their targets over the
+/// horizon, or stay. Paths that would pass through an obstacle, a passive body or a wall are
+/// moved out of it along the normal. lambda of the pushing pairs is the nonnegative
+/// least-squares force that moves the pushed body along its path; the controls are the planned
+/// velocities minus the contact reaction. The plan is a deterministic function of the task, so
+/// the OCP solved from it is the same on every machine (OcpSolver::solve(guess)).
+struct PushPlan {
+  /// Where the push phase begins and ends (both the horizon when nothing is pushed).
+  double contact_time = 0.0, release_time = 0.0;
+  std::vector<PushAssignment> pushes;
+  TrajectoryGuess guess;  ///< for buildOcp(task, modelled)
+};
+
+/// Pushers: each actuated body pushes at most one passive body with a target, through a
+/// modelled body pair. Its pushing pose is the one most directly behind the push direction
+/// (tilted in steps of 1 degree up to 89) that keeps it inside its workspace bounds at the
+/// start and end of the push and apart from the pushers placed before it.
+PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& modelled);
+
+}  // namespace fesd

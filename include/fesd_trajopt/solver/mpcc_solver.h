@@ -1,0 +1,182 @@
+#pragma once
+
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fesd_trajopt/nlp/nlp_problem.h"
+
+namespace fesd {
+
+/// Options passed to Ipopt for every relaxed NLP.
+struct IpoptSettings {
+  double tolerance = 1e-10;
+  double acceptable_tolerance = 1e-8;
+  int max_iterations = 500;  ///< per relaxed NLP
+  int print_level = 0;
+  /// Barrier strategy of warm-started solves: "monotone" needs fewer linear solves per iteration
+  /// than "adaptive" (whose quality function solves several systems), and every MUMPS call has
+  /// a fixed cost.
+  std::string mu_strategy = "monotone";
+  /// Barrier strategy of a cold start (the first relaxed NLP): "adaptive" needed about 40 %
+  /// fewer iterations on the manipulation OCP.
+  std::string cold_start_mu_strategy = "adaptive";
+  std::string linear_solver = "mumps";
+  /// A warm-started homotopy step starts at the previous solution with its multipliers, pushed
+  /// off the bounds by only this much, and with Ipopt's mu_init = warm_start_mu_factor * sigma:
+  /// a barrier parameter consistent with that point, so Ipopt does not re-centre far away.
+  double warm_start_mu_factor = 1e-6;
+  double warm_start_bound_push = 1e-9;
+  /// Any further Ipopt option by name; the value's type (integer, number, text) is inferred.
+  std::map<std::string, std::string> extra_options;
+};
+
+/// The Scholtes homotopy: solve the NLP with 0 <= a, 0 <= b, a*b <= sigma for
+/// sigma = sigma0, kappa*sigma0, ... until the complementarity residual is below tolerance.
+struct HomotopyOptions {
+  double sigma_initial = 1.0;
+  double sigma_reduction = 0.1;  ///< kappa
+  double complementarity_tolerance = 1e-9;
+  int max_steps = 30;
+  /// The homotopy stops before sigma falls below this: tighter relaxations are as hard for
+  /// Ipopt (tolerance 1e-10) as the MPCC itself, so further steps cannot help.
+  double minimum_sigma = 1e-13;
+  /// Weight of the objective terms that vanish with sigma (FESD's step regulariser); 0 drops
+  /// them. A different weight gives the homotopy a different path.
+  double vanishing_terms_weight = 1.0;
+  /// Inexact homotopy: a relaxed NLP is solved to Ipopt tolerance
+  /// max(ipopt.tolerance, relaxed_tolerance_factor * sigma); loose relaxations only guide.
+  double relaxed_tolerance_factor = 1e-2;
+  /// Objective scaling: > 0 is Ipopt's obj_scaling_factor; 0 (default) scales so that the
+  /// objective at the initial guess is at most objective_scale_target in size.
+  double objective_scaling = 0.0;
+  double objective_scale_target = 1e3;
+  /// A relaxed NLP that ends without converging does not abort the homotopy: the next, tighter
+  /// one starts from its iterate (as the reference implementation does).
+  bool continue_after_failure = true;
+  /// ... except after this many relaxed NLPs in a row that Ipopt found locally infeasible.
+  /// Measured (bench homotopy-failures and single runs): homotopies recovered after runs of up
+  /// to 7 other failures (iteration limit on the aligned-chain OCP, restoration failures in a
+  /// showcase re-simulation step), never after an infeasible one; on an infeasible simulation
+  /// step every relaxation failed (14 in a row, 3-8 times the time of stopping, same status).
+  int max_consecutive_infeasible = 3;
+  double wall_time_budget = std::numeric_limits<double>::infinity();  ///< seconds, per solve
+  /// After the homotopy converges, fix the identified active set and solve the resulting smooth
+  /// NLP once more (RelaxedMpcc::fixActiveSet): complementarity then holds exactly instead of
+  /// to O(sigma), which removes the sigma-blur of switch times (release times are only pinned
+  /// to O(sigma / h^2) by a relaxed pair, because c leaves the boundary quadratically) and makes
+  /// equilibrated steps exactly equal. If the polished NLP fails, the most ambiguous pairs are
+  /// flipped one at a time (up to polish_attempts solves); if all fail, the homotopy's point
+  /// is kept.
+  bool polish_active_set = true;
+  int polish_attempts = 3;
+  /// Early exit: once two converged relaxed NLPs in a row with sigma <= this identify the same
+  /// active set, it is polished (once); a polished point that meets the complementarity
+  /// tolerance and is B-stationary (RelaxedMpcc::biactiveDescent <= stationarity_tolerance) ends
+  /// the homotopy. The tighter relaxations after it would only re-derive the same active set.
+  /// 0 (default) polishes only after the homotopy has converged: on the test suite's Filippov
+  /// OCP (56) and a tiny-scale simulation, early polishing settled on other (worse) switch
+  /// placements than the full homotopy.
+  double early_polish_sigma = 0.0;
+  /// Largest descent (relative to the objective's gradient) that a biactive pair's fixed side
+  /// may offer at an accepted early or warm-start polished point.
+  double stationarity_tolerance = 1e-6;
+  /// A homotopy that fails later still gets a polishing attempt from its best converged
+  /// relaxed NLP, if that one's complementarity residual is at most this: polishing needs the
+  /// right active set, not a tiny sigma.
+  double polish_rescue_residual = 1e-4;
+  IpoptSettings ipopt;
+};
+
+enum class SolveStatus {
+  kSuccess,                ///< converged with the complementarity residual below tolerance
+  kMaxIterations,          ///< Ipopt hit its iteration limit in the last relaxed NLP
+  kInfeasible,             ///< Ipopt found the relaxed NLP locally infeasible
+  kTimeout,                ///< the wall-time budget ran out; the best iterate is returned
+  kComplementarityNotMet,  ///< the homotopy ended above the complementarity tolerance
+  kSolverError,            ///< Ipopt failed otherwise (restoration failure, bad values, ...)
+};
+std::string statusName(SolveStatus status);
+
+/// One relaxed NLP of the homotopy.
+struct HomotopyStep {
+  double sigma;  ///< 0 marks the polishing solve
+  int iterations;
+  double complementarity_residual;
+  double objective;
+  std::string ipopt_status;
+  double wall_seconds;
+  bool converged;  ///< Ipopt solved this NLP (to tolerance or to the acceptable level)
+};
+
+/// Multipliers of an NLP solution (bounds and constraints), for warm starts.
+struct NlpMultipliers {
+  std::vector<double> bound_lower, bound_upper, constraints;
+  bool empty() const { return constraints.empty() && bound_lower.empty(); }
+};
+
+struct MpccReport {
+  SolveStatus status = SolveStatus::kSolverError;
+  std::string message;
+  std::vector<HomotopyStep> history;
+  /// The last accepted iterate; after a timeout the best one: the converged relaxed NLP with
+  /// the smallest residual, else the start or the interrupted NLP's last iterate, whichever
+  /// violates the constraints less.
+  std::vector<double> solution;
+  NlpMultipliers multipliers;  ///< its multipliers
+  double objective = 0.0;
+  double complementarity_residual = 0.0;
+  int iterations = 0;     ///< Ipopt iterations over all homotopy steps
+  bool polished = false;  ///< the solution comes from the active-set polishing solve
+  /// A polished solution is B-stationary: no biactive pair offers descent (always true for
+  /// early and warm-start polishing, which require it).
+  bool b_stationary = false;
+  double wall_seconds = 0.0, cpu_seconds = 0.0;
+  double ipopt_seconds = 0.0;  ///< wall time inside Ipopt itself (solve time minus evaluations)
+  double evaluation_seconds = 0.0;  ///< wall time inside our function evaluations
+
+  bool converged() const { return status == SolveStatus::kSuccess; }
+  int failedSteps() const;  ///< relaxed (or polishing) NLPs that Ipopt did not solve
+  void addEffort(const MpccReport& other);   ///< adds another solve's iterations and times
+  void accumulate(const MpccReport& other);  ///< addEffort, and the worse residual
+};
+
+/// One line: status, homotopy steps, iterations, last NLP, residual, polishing.
+std::string describe(const MpccReport& report, double tolerance);
+
+class IpoptSession;
+struct PrimalDualPoint;
+
+/// Solves a RelaxedMpcc by the homotopy, each NLP by Ipopt with exact sparse derivatives,
+/// warm-started from the previous one. A solver keeps one Ipopt application and can be reused
+/// for many problems; it is not thread-safe (use one per thread). Solvers in different threads
+/// run their Ipopt solves one at a time: MUMPS is not thread-safe.
+class MpccSolver {
+ public:
+  explicit MpccSolver(HomotopyOptions options = {});
+  ~MpccSolver();
+  MpccSolver(const MpccSolver&) = delete;
+  MpccSolver& operator=(const MpccSolver&) = delete;
+
+  const HomotopyOptions& options() const { return options_; }
+  /// Solves from the initial guess, the homotopy starting at `sigma_initial` (default: the
+  /// options'). With zero complementarity constraints the problem is a smooth NLP and is solved
+  /// once, without homotopy.
+  /// `wall_time_budget` (seconds, if >= 0) replaces the options' budget for this call.
+  MpccReport solve(RelaxedMpcc& problem, const std::vector<double>& initial_guess,
+                   double sigma_initial = -1.0, double wall_time_budget = -1.0);
+  /// A warm start from a previous solution of the same problem, multipliers included.
+  MpccReport solve(RelaxedMpcc& problem, const MpccReport& previous, double sigma_initial,
+                   double wall_time_budget = -1.0);
+
+ private:
+  MpccReport run(RelaxedMpcc& problem, PrimalDualPoint point, double sigma_initial,
+                 double wall_time_budget);
+
+  HomotopyOptions options_;
+  std::unique_ptr<IpoptSession> session_;
+};
+
+}  // namespace fesd

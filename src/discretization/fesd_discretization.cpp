@@ -1,0 +1,514 @@
+#include "fesd_trajopt/discretization/fesd_discretization.h"
+
+#include "fesd_trajopt/function/quadratic_function.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+namespace fesd {
+namespace {
+
+constexpr double kInf = NlpAssembly::kInfinity;
+
+}  // namespace
+
+FesdDiscretization::FesdDiscretization(OcpDefinition ocp, DiscretizationOptions options)
+    : ocp_(std::move(ocp)),
+      model_(std::dynamic_pointer_cast<const DcsModel>(ocp_.model)),
+      options_(options),
+      tableau_(makeTableau(options.family, options.num_stages)) {
+  if (!model_) throw std::invalid_argument("FesdDiscretization: the model is not a DcsModel");
+  validateOcp(ocp_, options_);
+  if (ocp_.initial_state_lower.size()) {
+    throw std::invalid_argument("FesdDiscretization: a free initial state is not supported");
+  }
+  nx_ = model_->stateSize();
+  nu_ = model_->controlSize();
+  nc_ = model_->constraintSize();
+  if (!tableau_.lastStageIsEndPoint()) {
+    throw std::invalid_argument("FESD discretisation: scheme " + tableau_.name() +
+                                " has no stage at the element end (c_ns != 1); use Radau-IIA");
+  }
+  nominal_step_ = fesd::nominalStep(ocp_, options_);
+  // Without constraints nothing can switch: the steps stay fixed and no MPCC machinery is built.
+  steps_free_ = options_.switch_detection && nc_ > 0;
+  buildVariables();
+  buildDynamics();
+  buildComplementarity();
+  buildStepEquilibration();
+  addCostsAndConstraints(nlp_, grid_, ocp_, tableau_);
+  nlp_.finalize();
+}
+
+void FesdDiscretization::buildVariables() {
+  const int ns = tableau_.stages;
+  start_.x = nlp_.addVariables(nx_, 0.0, 0.0);
+  // c(x_start) is data (x_start is fixed): set by setInitialState, without a sign bound, so that
+  // a start a rounding error inside the boundary (the end of a previous step) stays feasible.
+  start_.s = nlp_.addVariables(nc_, 0.0, 0.0);
+  // lambda just before the start (data: 0, or the end of a previous simulation step). It only
+  // enters the step-equilibration sums.
+  start_.lambda = nlp_.addVariables(nc_, 0.0, 0.0);
+  carried_lambda_ = nlp_.addVariables(nc_, 0.0, 0.0);
+  setInitialState(ocp_.initial_state);
+  const double step_lower =
+      steps_free_ ? (1.0 - options_.step_bound) * nominal_step_ : nominal_step_;
+  const double step_upper =
+      steps_free_ ? (1.0 + options_.step_bound) * nominal_step_ : nominal_step_;
+  grid_.elements_per_interval = options_.num_elements;
+  for (int k = 0; k < ocp_.num_intervals; ++k) {
+    grid_.controls.push_back(nlp_.addVariables(nu_, -kInf, kInf));
+    freeControl(k);
+    for (int n = 0; n < options_.num_elements; ++n) {
+      grid_.steps.push_back(nlp_.addVariables(1, step_lower, step_upper, nominal_step_));
+      std::vector<StagePoint> points(ns);
+      for (StagePoint& point : points) {
+        point.x = nlp_.addVariables(nx_, -kInf, kInf);
+        for (int d = 0; d < nx_; ++d) {
+          nlp_.setVariableBounds(point.x + d, ocp_.state_lower.size() ? ocp_.state_lower(d) : -kInf,
+                                 ocp_.state_upper.size() ? ocp_.state_upper(d) : kInf);
+        }
+        point.s = nlp_.addVariables(nc_, 0.0, kInf);
+        point.lambda = nlp_.addVariables(nc_, 0.0, kInf);
+      }
+      stages_.push_back(points);
+      grid_.stage_states.emplace_back();
+      for (const StagePoint& point : points) grid_.stage_states.back().push_back(point.x);
+      grid_.end_states.push_back(points.back().x);
+    }
+  }
+  core_variables_ = nlp_.numVariables();
+}
+
+const FesdDiscretization::StagePoint& FesdDiscretization::previousPoint(int element) const {
+  return element == 0 ? start_ : stages_[element - 1].back();
+}
+
+std::vector<int> FesdDiscretization::velocityInputs(int element, int stage) const {
+  const StagePoint& point = stages_[element][stage];
+  std::vector<int> inputs;
+  for (int d = 0; d < nx_; ++d) inputs.push_back(point.x + d);
+  for (int d = 0; d < nu_; ++d) inputs.push_back(grid_.controlOf(element) + d);
+  for (int d = 0; d < nc_; ++d) inputs.push_back(point.lambda + d);
+  return inputs;
+}
+
+void FesdDiscretization::addLifting(const StagePoint& point) {
+  if (nc_ == 0) return;
+  const int row = nlp_.addRows(nc_, 0.0, 0.0);
+  for (int k = 0; k < nc_; ++k) nlp_.addLinear(row + k, point.s + k, 1.0);
+  std::vector<int> inputs;
+  for (int d = 0; d < nx_; ++d) inputs.push_back(point.x + d);
+  nlp_.addFunctionTerm(model_->constraints(), inputs, -1, {{row, -1.0}});
+}
+
+void FesdDiscretization::buildDynamics() {
+  const int ns = tableau_.stages;
+  for (int e = 0; e < numElements(); ++e) {
+    const StagePoint& previous = previousPoint(e);
+    // x_{n,i} - x_{n,0} - h_n sum_j a_ij v(x_{n,j}, u, lambda_{n,j}) = 0
+    const int first_row = nlp_.addRows(ns * nx_, 0.0, 0.0);
+    for (int i = 0; i < ns; ++i) {
+      for (int d = 0; d < nx_; ++d) {
+        nlp_.addLinear(first_row + i * nx_ + d, stages_[e][i].x + d, 1.0);
+        nlp_.addLinear(first_row + i * nx_ + d, previous.x + d, -1.0);
+      }
+    }
+    for (int j = 0; j < ns; ++j) {
+      std::vector<NlpAssembly::Target> targets;
+      for (int i = 0; i < ns; ++i) {
+        if (tableau_.a(i, j) != 0.0) targets.push_back({first_row + i * nx_, -tableau_.a(i, j)});
+      }
+      nlp_.addFunctionTerm(model_->velocity(), velocityInputs(e, j), grid_.steps[e], targets);
+    }
+    for (const StagePoint& point : stages_[e]) addLifting(point);
+  }
+  if (steps_free_) addIntervalLengthRows(nlp_, grid_, ocp_);
+}
+
+void FesdDiscretization::buildComplementarity() {
+  const int ns = tableau_.stages;
+  for (int e = 0; e < numElements(); ++e) {
+    for (int k = 0; k < nc_; ++k) {
+      // Decisions compare c / |grad c| (distance to the boundary) with h0 lambda |grad c| (the
+      // distance the force moves in an element): at R = 1e-3 raw c (~1e-7) looked smaller than
+      // a free pair's relaxed lambda (~1e-3), and polishing fixed contacts that were not there.
+      const double scale = model_->constraintScales()(k);
+      const double c_weight = 1.0 / scale, lambda_weight = nominal_step_ * scale;
+      if (!steps_free_) {
+        for (const StagePoint& point : stages_[e]) {
+          nlp_.addComplementarity({{point.s + k, 1.0}}, {{point.lambda + k, 1.0}}, c_weight,
+                                  lambda_weight);
+        }
+        continue;
+      }
+      // Cross-complementarity (eq. 8): c at the element's stage points and at the previous
+      // boundary point against lambda at the stage points and at the previous element's last
+      // stage. The latter only within a control interval: a control jump may release a contact
+      // with a jump of lambda, which eq. 8c (derived for continuous f) would forbid.
+      const StagePoint& previous = previousPoint(e);
+      const bool previous_lambda = e % options_.num_elements != 0;
+      LinearExpression c_side{{previous.s + k, 1.0}}, lambda_side;
+      for (int i = 0; i < ns; ++i) {
+        c_side.push_back({stages_[e][i].s + k, 1.0});
+        lambda_side.push_back({stages_[e][i].lambda + k, 1.0});
+      }
+      if (previous_lambda) lambda_side.push_back({previous.lambda + k, 1.0});
+      if (e == 0) lambda_side.push_back({carried_lambda_ + k, 1.0});
+      if (options_.cross_complementarity == CrossComplementarity::kElementSums) {
+        nlp_.addComplementarity(c_side, lambda_side, c_weight, lambda_weight);
+        continue;
+      }
+      for (size_t a = 0; a < c_side.size(); ++a) {
+        for (size_t b = 0; b < lambda_side.size(); ++b) {
+          // The previous point's c against the previous point's lambda (or the carried one):
+          // one point, no cross pair.
+          const bool both_previous =
+              a == 0 && (previous_lambda || e == 0) && b + 1 == lambda_side.size();
+          if (!both_previous) {
+            nlp_.addComplementarity({c_side[a]}, {lambda_side[b]}, c_weight, lambda_weight);
+          }
+        }
+      }
+    }
+  }
+}
+
+void FesdDiscretization::buildStepEquilibration() {
+  if (!steps_free_) return;
+  // Sums over the points of an element's closure. The backward sums also take the element's start
+  // point: with one Radau stage (the end point) the stage points alone carry no trace of a
+  // contact or release at the element's end, and nu would vanish at every switch (Table I needs
+  // c > 0 before a contact and lambda > 0 before a release). A larger sum can only make nu
+  // larger, so this never forbids a switch that the paper's sums allow.
+  auto closure_sum = [&](int element, int k, bool lambda, bool with_start) {
+    LinearExpression sum;
+    if (with_start) {
+      const StagePoint& start = previousPoint(element);
+      sum.push_back({(lambda ? start.lambda : start.s) + k, 1.0});
+    }
+    for (const StagePoint& point : stages_[element]) {
+      sum.push_back({(lambda ? point.lambda : point.s) + k, 1.0});
+    }
+    return sum;
+  };
+  auxiliary_variables_begin_ = auxiliary_variables_end_ = nlp_.numVariables();
+  auxiliary_rows_begin_ = auxiliary_rows_end_ = nlp_.numConstraints();
+  for (int k_interval = 0; k_interval < ocp_.num_intervals; ++k_interval) {
+    for (int n = 1; n < options_.num_elements; ++n) {
+      const int element = k_interval * options_.num_elements + n;
+      EquilibrationAuxiliaries boundary{element - 1, element, {}, {}, {}, {}, {}, {}, {}, -1, -1};
+      for (int k = 0; k < nc_; ++k) {
+        boundary.sums.push_back(
+            {closure_sum(element - 1, k, true, true), closure_sum(element, k, true, false),
+             closure_sum(element - 1, k, false, true), closure_sum(element, k, false, false)});
+      }
+      addStepRegularizer(nlp_, options_, nominal_step_, grid_.steps[element - 1],
+                         grid_.steps[element]);
+      equilibration_.push_back(boundary);
+    }
+  }
+  if (options_.pds_step_equilibration == PdsStepEquilibration::kBigM) addBigMEquilibration();
+  for (EquilibrationAuxiliaries& aux : equilibration_) {
+    aux.equal_steps_row = nlp_.addRows(1, -kInf, kInf);
+    nlp_.addLinear(aux.equal_steps_row,
+                   {{grid_.steps[aux.previous_element], 1.0}, {grid_.steps[aux.element], -1.0}});
+  }
+  nlp_.setActiveSetHook([this](const double* x) { equilibrateActiveSet(x); });
+}
+
+void FesdDiscretization::addBigMEquilibration() {
+  auxiliary_variables_begin_ = nlp_.numVariables();
+  auxiliary_rows_begin_ = nlp_.numConstraints();
+  const double big_m = options_.equilibration_big_m * nominal_step_;
+  auto add_row = [&](const LinearExpression& expression, double lower, double upper) {
+    const int row = nlp_.addRows(1, lower, upper);
+    nlp_.addLinear(row, expression);
+  };
+  auto scaled = [](LinearExpression expression, double factor) {
+    for (LinearTerm& t : expression) t.coefficient *= factor;
+    return expression;
+  };
+  auto concat = [](LinearExpression a, const LinearExpression& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+  };
+  for (EquilibrationAuxiliaries& aux : equilibration_) {
+    LinearExpression any_switch_upper;
+    for (const BoundarySums& sums : aux.sums) {
+      const int pi_lambda = nlp_.addVariables(1, 0.0, kInf);
+      const int pi_c = nlp_.addVariables(1, 0.0, kInf);
+      const int maximum = nlp_.addVariables(1, 0.0, kInf);
+      const int gap = nlp_.addVariables(2, 0.0, kInf);      // max - pi_c, max - pi_lambda
+      const int kkt = nlp_.addVariables(2, 0.0, 1.0, 0.5);  // LP multipliers of max
+      const int nu = nlp_.addVariables(1, 0.0, kInf);
+      // pi = backward v forward:  pi >= B, pi >= F, pi <= B + F
+      const std::tuple<int, const LinearExpression&, const LinearExpression&> disjunctions[] = {
+          {pi_lambda, sums.lambda_backward, sums.lambda_forward},
+          {pi_c, sums.c_backward, sums.c_forward}};
+      for (const auto& [pi, backward, forward] : disjunctions) {
+        add_row(concat({{pi, 1.0}}, scaled(backward, -1.0)), 0.0, kInf);
+        add_row(concat({{pi, 1.0}}, scaled(forward, -1.0)), 0.0, kInf);
+        add_row(concat(concat({{pi, 1.0}}, scaled(backward, -1.0)), scaled(forward, -1.0)), -kInf,
+                0.0);
+      }
+      // maximum = max(pi_c, pi_lambda) by the KKT conditions of min z s.t. z >= pi_c, pi_lambda:
+      // gaps z - pi >= 0 (lifted, so every complementarity pair is between nonnegative
+      // variables), multipliers summing to one, each complementary to its gap.
+      add_row({{gap, 1.0}, {maximum, -1.0}, {pi_c, 1.0}}, 0.0, 0.0);
+      add_row({{gap + 1, 1.0}, {maximum, -1.0}, {pi_lambda, 1.0}}, 0.0, 0.0);
+      add_row({{kkt, 1.0}, {kkt + 1, 1.0}}, 1.0, 1.0);
+      nlp_.addComplementarity({{gap, 1.0}}, {{kkt, 1.0}});
+      nlp_.addComplementarity({{gap + 1, 1.0}}, {{kkt + 1, 1.0}});
+      // nu = pi_c ^ pi_lambda:  nu <= pi_c, nu <= pi_lambda, nu >= pi_c + pi_lambda - max
+      add_row({{nu, 1.0}, {pi_c, -1.0}}, -kInf, 0.0);
+      add_row({{nu, 1.0}, {pi_lambda, -1.0}}, -kInf, 0.0);
+      add_row({{nu, 1.0}, {pi_c, -1.0}, {pi_lambda, -1.0}, {maximum, 1.0}}, 0.0, kInf);
+      aux.pi_lambda.push_back(pi_lambda);
+      aux.pi_c.push_back(pi_c);
+      aux.maximum.push_back(maximum);
+      aux.gap.push_back(gap);
+      aux.kkt.push_back(kkt);
+      aux.nu.push_back(nu);
+      any_switch_upper.push_back({nu, -1.0});
+    }
+    // OR over the constraints: nu_k <= eta <= sum_k nu_k
+    aux.any_switch = nlp_.addVariables(1, 0.0, kInf);
+    for (int nu : aux.nu) add_row({{aux.any_switch, 1.0}, {nu, -1.0}}, 0.0, kInf);
+    add_row(concat({{aux.any_switch, 1.0}}, any_switch_upper), -kInf, 0.0);
+    // -eta M <= h_{n-1} - h_n <= eta M
+    const int h_prev = grid_.steps[aux.previous_element], h = grid_.steps[aux.element];
+    add_row({{h_prev, 1.0}, {h, -1.0}, {aux.any_switch, -big_m}}, -kInf, 0.0);
+    add_row({{h_prev, 1.0}, {h, -1.0}, {aux.any_switch, big_m}}, 0.0, kInf);
+  }
+  auxiliary_variables_end_ = nlp_.numVariables();
+  auxiliary_rows_end_ = nlp_.numConstraints();
+}
+
+void FesdDiscretization::equilibrateActiveSet(const double* x) {
+  // Frozen at values exactly consistent with the point (max, min, KKT multipliers in {0, 1}).
+  std::vector<double> consistent(x, x + nlp_.numVariables());
+  completeAuxiliaries(consistent);
+  for (int v = auxiliary_variables_begin_; v < auxiliary_variables_end_; ++v) {
+    nlp_.setVariableBounds(v, consistent[v], consistent[v]);
+  }
+  for (int row = auxiliary_rows_begin_; row < auxiliary_rows_end_; ++row) {
+    nlp_.setRowBounds(row, -kInf, kInf);
+  }
+  // A fixed variable of (near) zero value: a side fixed by the active set, or zero data.
+  auto nonzero = [&](const LinearExpression& sum) {
+    for (const LinearTerm& t : sum) {
+      const double lower = nlp_.variableLower(t.variable);
+      if (lower != nlp_.variableUpper(t.variable) ||
+          std::fabs(lower) > NlpAssembly::kNegligibleFixedValue) {
+        return true;
+      }
+    }
+    return false;
+  };
+  for (const EquilibrationAuxiliaries& aux : equilibration_) {
+    bool any_switch = false;
+    for (const BoundarySums& sums : aux.sums) {
+      any_switch |= (nonzero(sums.c_backward) || nonzero(sums.c_forward)) &&
+                    (nonzero(sums.lambda_backward) || nonzero(sums.lambda_forward));
+    }
+    if (!any_switch) nlp_.setRowBounds(aux.equal_steps_row, 0.0, 0.0);
+  }
+}
+
+void FesdDiscretization::setInitialState(const Eigen::VectorXd& x0) {
+  if (x0.size() != nx_) throw std::invalid_argument("initial state has the wrong size");
+  ocp_.initial_state = x0;
+  for (int d = 0; d < nx_; ++d) {
+    nlp_.setVariableBounds(start_.x + d, x0(d), x0(d));
+    nlp_.initialGuess()[start_.x + d] = x0(d);
+  }
+  Eigen::VectorXd c0(nc_);
+  model_->constraints()->evaluate(x0.data(), c0.data());
+  for (int k = 0; k < nc_; ++k) {
+    nlp_.setVariableBounds(start_.s + k, c0(k), c0(k));
+    nlp_.initialGuess()[start_.s + k] = c0(k);
+  }
+}
+
+void FesdDiscretization::setInitialMultipliers(const Eigen::VectorXd& lambda0) {
+  if (lambda0.size() != nc_) throw std::invalid_argument("initial multipliers have the wrong size");
+  for (int k = 0; k < nc_; ++k) {
+    const double value = std::max(lambda0(k), 0.0);
+    nlp_.setVariableBounds(start_.lambda + k, value, value);
+    nlp_.initialGuess()[start_.lambda + k] = value;
+  }
+}
+
+void FesdDiscretization::continueFrom(const Trajectory& previous, bool same_dynamics) {
+  const Eigen::VectorXd lambda = previous.elements.back().stage_multipliers.rightCols(1);
+  setInitialMultipliers(lambda);
+  for (int k = 0; k < nc_; ++k) {
+    // Only a pair in contact at the start carries its force: c0 lambda0 > 0 would make the
+    // product row of the first element infeasible.
+    const bool in_contact = nlp_.initialGuess()[start_.s + k] <= NlpAssembly::kNegligibleFixedValue;
+    const double carried = same_dynamics && in_contact ? std::max(lambda(k), 0.0) : 0.0;
+    nlp_.setVariableBounds(carried_lambda_ + k, carried, carried);
+    nlp_.initialGuess()[carried_lambda_ + k] = carried;
+  }
+}
+
+void FesdDiscretization::fixControl(int interval, const Eigen::VectorXd& u) {
+  if (u.size() != nu_) throw std::invalid_argument("control has the wrong size");
+  fesd::fixControl(nlp_, grid_, interval, u);
+}
+
+void FesdDiscretization::freeControl(int interval) {
+  fesd::freeControl(nlp_, grid_, ocp_, interval);
+}
+
+std::vector<double> FesdDiscretization::constantGuess(
+    const std::vector<Eigen::VectorXd>& controls) const {
+  std::vector<double> x = nlp_.initialGuess();  // holds the start point's data
+  for (const auto& element : stages_) {
+    for (const StagePoint& point : element) {
+      for (int d = 0; d < nx_; ++d) x[point.x + d] = ocp_.initial_state(d);
+      for (int k = 0; k < nc_; ++k) {
+        x[point.s + k] = std::max(x[start_.s + k], 0.0);
+        x[point.lambda + k] = 0.0;
+      }
+    }
+  }
+  for (int e = 0; e < numElements(); ++e) x[grid_.steps[e]] = nominal_step_;
+  guessControls(nlp_, grid_, nu_, controls, x);
+  completeAuxiliaries(x);
+  return x;
+}
+
+std::vector<double> FesdDiscretization::guessFrom(const TrajectoryGuess& guess) const {
+  std::vector<double> x = nlp_.initialGuess();  // holds the start point's data
+  guessGridPoints(nlp_, grid_, tableau_, nominal_step_, nx_, nu_, guess, x);
+  for (int e = 0; e < numElements(); ++e) {
+    for (int i = 0; i < tableau_.stages; ++i) {
+      const StagePoint& point = stages_[e][i];
+      model_->constraints()->evaluate(x.data() + point.x, x.data() + point.s);
+      const Eigen::VectorXd lambda = guess.multipliers
+                                         ? guess.multipliers((e + tableau_.c(i)) * nominal_step_)
+                                         : Eigen::VectorXd::Zero(nc_);
+      if (lambda.size() != nc_) {
+        throw std::invalid_argument("TrajectoryGuess: multipliers of the wrong size");
+      }
+      for (int k = 0; k < nc_; ++k) {
+        // A planned path may graze into a constraint; its lifted value stays within its bound.
+        x[point.s + k] = std::max(x[point.s + k], 0.0);
+        x[point.lambda + k] = std::max(lambda(k), 0.0);
+      }
+    }
+  }
+  completeAuxiliaries(x);
+  return x;
+}
+
+std::vector<double> FesdDiscretization::adoptedGuess(const Discretization& other_discretization,
+                                                     const std::vector<double>& solution) const {
+  const auto* other_pointer = dynamic_cast<const FesdDiscretization*>(&other_discretization);
+  if (!other_pointer) throw std::invalid_argument("adoptedGuess: not a FesdDiscretization");
+  const FesdDiscretization& other = *other_pointer;
+  if (other.core_variables_ != core_variables_ || other.numElements() != numElements() ||
+      other.tableau_.stages != tableau_.stages ||
+      static_cast<int>(solution.size()) != other.nlp_.numVariables()) {
+    throw std::invalid_argument("adoptedGuess: the discretisations' grids differ");
+  }
+  std::vector<double> x = constantGuess();
+  std::copy(solution.begin(), solution.begin() + core_variables_, x.begin());
+  completeAuxiliaries(x);
+  return x;
+}
+
+std::vector<double> FesdDiscretization::translatedGuess(
+    const std::vector<double>& previous_solution) const {
+  if (static_cast<int>(previous_solution.size()) != nlp_.numVariables()) {
+    throw std::invalid_argument("translatedGuess: solution of a differently sized problem");
+  }
+  std::vector<double> x = previous_solution;
+  const Eigen::VectorXd shift =
+      ocp_.initial_state - Eigen::Map<const Eigen::VectorXd>(x.data() + start_.x, nx_);
+  auto move_point = [&](const StagePoint& point) {
+    Eigen::Map<Eigen::VectorXd> state(x.data() + point.x, nx_);
+    state += shift;
+    model_->constraints()->evaluate(state.data(), x.data() + point.s);
+  };
+  for (const auto& element : stages_) {
+    for (const StagePoint& point : element) move_point(point);
+  }
+  for (int i = 0; i < nx_; ++i) x[start_.x + i] = nlp_.initialGuess()[start_.x + i];
+  for (int k = 0; k < nc_; ++k) {
+    x[start_.s + k] = nlp_.initialGuess()[start_.s + k];
+    x[start_.lambda + k] = nlp_.initialGuess()[start_.lambda + k];
+  }
+  completeAuxiliaries(x);
+  return x;
+}
+
+void FesdDiscretization::completeAuxiliaries(std::vector<double>& x) const {
+  auto value = [&](const LinearExpression& expression) {
+    double total = 0.0;
+    for (const LinearTerm& t : expression) total += t.coefficient * x[t.variable];
+    return total;
+  };
+  for (const EquilibrationAuxiliaries& aux : equilibration_) {
+    if (aux.any_switch < 0) continue;  // no big-M auxiliaries
+    double any = 0.0;
+    for (int k = 0; k < nc_; ++k) {
+      const BoundarySums& sums = aux.sums[k];
+      const double pi_lambda = std::max(value(sums.lambda_backward), value(sums.lambda_forward));
+      const double pi_c = std::max(value(sums.c_backward), value(sums.c_forward));
+      x[aux.pi_lambda[k]] = pi_lambda;
+      x[aux.pi_c[k]] = pi_c;
+      x[aux.maximum[k]] = std::max(pi_c, pi_lambda);
+      x[aux.gap[k]] = std::max(pi_c, pi_lambda) - pi_c;
+      x[aux.gap[k] + 1] = std::max(pi_c, pi_lambda) - pi_lambda;
+      x[aux.kkt[k]] = pi_c >= pi_lambda ? 1.0 : 0.0;  // the LP multiplier of the larger side
+      x[aux.kkt[k] + 1] = pi_c >= pi_lambda ? 0.0 : 1.0;
+      x[aux.nu[k]] = std::min(pi_c, pi_lambda);
+      any = std::max(any, x[aux.nu[k]]);
+    }
+    x[aux.any_switch] = any;
+  }
+}
+
+Trajectory FesdDiscretization::extract(const double* x, double start_time,
+                                       double activity_tolerance,
+                                       double penetration_tolerance) const {
+  Trajectory trajectory = gridTrajectory(x, grid_, ocp_, start_.x, nc_, start_time);
+  for (int e = 0; e < numElements(); ++e) {
+    ElementValues& element = trajectory.elements[e];
+    for (int j = 0; j < tableau_.stages; ++j) {
+      const StagePoint& point = stages_[e][j];
+      element.stage_multipliers.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.lambda, nc_);
+      element.stage_constraints.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.s, nc_);
+    }
+    if (nc_ > 0) {
+      element.lowest_constraints = lowestConstraintBetweenStages(
+          *model_->constraints(), tableau_.c, trajectory.states[e], element.stage_states);
+    }
+  }
+  std::vector<bool> initially_active(nc_);
+  for (int k = 0; k < nc_; ++k) initially_active[k] = x[start_.s + k] <= activity_tolerance;
+  classifySwitches(trajectory, initially_active, activity_tolerance, penetration_tolerance);
+  return trajectory;
+}
+
+std::vector<bool> FesdDiscretization::activeAt(const Eigen::VectorXd& x, double tolerance) const {
+  Eigen::VectorXd c(nc_);
+  model_->constraints()->evaluate(x.data(), c.data());
+  std::vector<bool> active(nc_);
+  for (int k = 0; k < nc_; ++k) active[k] = c(k) <= tolerance;
+  return active;
+}
+
+// Defined here, not with the model, so that models stay below the discretisation layer.
+std::unique_ptr<Discretization> DcsModel::discretize(const OcpDefinition& ocp,
+                                                     const DiscretizationOptions& options) const {
+  return std::make_unique<FesdDiscretization>(ocp, options);
+}
+
+}  // namespace fesd

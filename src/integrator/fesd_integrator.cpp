@@ -1,0 +1,280 @@
+#include "fesd_trajopt/integrator/fesd_integrator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <tuple>
+#include <utility>
+
+#include "fesd_trajopt/solver/stopwatch.h"
+
+namespace fesd {
+
+namespace {
+
+/// A split step: a short part at each end and the middle in halves. A switch close to a step's
+/// start or end is ten times farther from the ends of its part, relative to the part's length,
+/// and every part brings its own element boundaries for steps with more switches than
+/// boundaries.
+constexpr double kSplitFractions[] = {0.1, 0.4, 0.4, 0.1};
+
+/// Whether a step's solution is the exact FESD solution: converged and, if anything can switch,
+/// polished (complementarity exact, switches at element boundaries).
+bool exact(const MpccReport& report, const RelaxedMpcc& nlp) {
+  return report.converged() && (report.polished || nlp.numComplementarities() == 0);
+}
+
+/// Whether some element of a part's trajectory piece is longer than `stretch` times `nominal`.
+bool stretched(const Trajectory& piece, double nominal, double stretch) {
+  return std::any_of(
+      piece.elements.begin(), piece.elements.end(),
+      [&](const ElementValues& element) { return element.step > stretch * nominal; });
+}
+
+/// How good a step's solution is: exact, converged, or neither.
+int rank(const MpccReport& report, const RelaxedMpcc& nlp) {
+  return exact(report, nlp) ? 2 : report.converged() ? 1 : 0;
+}
+
+}  // namespace
+
+/// One simulation: the step problems of every part length that splitting reaches (built when
+/// first needed), the solvers, and the result so far.
+class FesdIntegrator::Run {
+ public:
+  Run(const FesdIntegrator& integrator, const Eigen::VectorXd& x0, double step_length)
+      : options_(integrator.options_),
+        solver_(options_.homotopy),
+        retry_solver_(options_.retry_homotopy),
+        state_(x0) {
+    step_problem_.model = integrator.model_;
+    step_problem_.initial_state = x0;
+    step_problem_.horizon = step_length;
+    step_problem_.num_intervals = 1;
+    result.status = SolveStatus::kSuccess;
+  }
+
+  /// Solves user step k (of length h) under control u.
+  bool step(int k, const Eigen::VectorXd& u) {
+    split_ = false;
+    const bool ok = solve(0, 0, u, k * step_problem_.horizon);
+    result.split_steps += split_;
+    return ok;
+  }
+
+  const std::string& failure() const { return failure_; }
+  const Discretization& discretization() { return *partOf(0, 0, kSwitchDetection).discretization; }
+  double wallSeconds() const { return stopwatch_.wallSeconds(); }
+  double cpuSeconds() const { return stopwatch_.cpuSeconds(); }
+
+  SimulationResult result;
+
+ private:
+  /// How a part is discretised: with switch detection (FESD, if the options have it), the same
+  /// with twice the elements, or with fixed steps.
+  enum Kind { kSwitchDetection, kRefined, kFixedSteps };
+  struct Part {
+    double length;
+    int num_elements;
+    std::unique_ptr<Discretization> discretization;
+    std::vector<double> previous_solution;
+  };
+  /// One solve of a part: its report, the trajectory piece, whether the retry path gave it.
+  struct Attempt {
+    MpccReport report;
+    Trajectory piece;
+    bool retried = false;
+  };
+
+  /// Solves [start_time, start_time + length) under control u from the current state, where
+  /// length = h 0.1^tenths 0.4^middles. A part whose solution is not exact is split
+  /// (kSplitFractions) while SimulationOptions::max_step_splits allows; a part of a split step
+  /// that cannot be split any further and does not converge is integrated with fixed steps.
+  /// False when it stops the simulation.
+  bool solve(int tenths, int middles, const Eigen::VectorXd& u, double start_time) {
+    Part& part = partOf(tenths, middles, kSwitchDetection);
+    Attempt attempt = solvePart(part, u, start_time);
+    const bool can_split = tenths + middles < options_.max_step_splits;
+    refineIfNeeded(part, tenths, middles, u, start_time, !can_split, attempt);
+    const bool timed_out = attempt.report.status == SolveStatus::kTimeout;
+    if (can_split && !timed_out && !exact(attempt.report, part.discretization->nlp())) {
+      result.totals.addEffort(attempt.report);  // the attempts on the whole part count too
+      split_ = true;
+      double time = start_time;
+      for (const double fraction : kSplitFractions) {
+        const bool end_part = fraction == kSplitFractions[0];
+        if (!solve(tenths + end_part, middles + !end_part, u, time)) return false;
+        time += fraction * part.length;
+      }
+      return true;
+    }
+    if (!can_split && tenths + middles > 0 && !timed_out && !attempt.report.converged()) {
+      // A tiny part (1e-4 h after four levels) that still holds more switches than FESD can
+      // place, e.g. a contact and a release 2e-6 apart: fixed steps keep the simulation going
+      // at an error of the order of the part's length, and its switches are flagged unresolved.
+      Attempt fixed = solvePart(partOf(tenths, middles, kFixedSteps), u, start_time);
+      fixed.report.addEffort(attempt.report);
+      if (fixed.report.converged()) {
+        attempt = std::move(fixed);
+        ++result.fixed_step_parts;
+      }
+    }
+    result.retried_steps += attempt.retried;
+    result.totals.accumulate(attempt.report);
+    result.step_histories.push_back(attempt.report.history);
+    result.trajectory.append(attempt.piece);
+    state_ = attempt.piece.finalState();
+    previous_control_ = u;
+    if (attempt.report.converged()) return true;
+    result.status = attempt.report.status;
+    failure_ = attempt.report.message;
+    return false;
+  }
+
+  /// SimulationOptions::refine_elements: the part on twice the elements replaces a solution that
+  /// is exact but stretched, or not exact where `last_resort` (the part cannot be split), if its
+  /// own solution is exact and not stretched.
+  void refineIfNeeded(const Part& part, int tenths, int middles, const Eigen::VectorXd& u,
+                      double start_time, bool last_resort, Attempt& attempt) {
+    const bool is_exact = exact(attempt.report, part.discretization->nlp());
+    const double nominal = part.length / part.num_elements;
+    const bool needed =
+        is_exact ? stretched(attempt.piece, nominal, options_.max_element_stretch) : last_resort;
+    if (!options_.refine_elements || attempt.report.status == SolveStatus::kTimeout || !needed) {
+      return;
+    }
+    Part& refined_part = partOf(tenths, middles, kRefined);
+    Attempt refined = solvePart(refined_part, u, start_time);
+    // Kept only within the stretch bound of the coarser elements: a refined part whose switches
+    // took several boundaries can leave an element longer than that.
+    if (exact(refined.report, refined_part.discretization->nlp()) &&
+        !stretched(refined.piece, nominal, options_.max_element_stretch)) {
+      refined.report.addEffort(attempt.report);
+      refined.retried = refined.retried || attempt.retried;
+      attempt = std::move(refined);
+      ++result.refined_parts;
+    } else {
+      attempt.report.addEffort(refined.report);
+    }
+  }
+
+  /// One part from the current state: the homotopy, and its retry path if that is not exact.
+  Attempt solvePart(Part& part, const Eigen::VectorXd& u, double start_time) {
+    Discretization& discretization = *part.discretization;
+    discretization.setInitialState(state_);
+    if (!result.trajectory.elements.empty()) {
+      discretization.continueFrom(result.trajectory,
+                                  previous_control_.size() == u.size() && previous_control_ == u);
+    }
+    if (u.size() > 0) discretization.fixControl(0, u);
+    const std::vector<double> guess =
+        part.previous_solution.empty() || !options_.reuse_previous_step
+            ? discretization.constantGuess({u})
+            : discretization.translatedGuess(part.previous_solution);
+    const RelaxedMpcc& nlp = discretization.nlp();
+    Attempt attempt;
+    attempt.report = solver_.solve(discretization.nlp(), guess, -1.0, remainingBudget());
+    if (!exact(attempt.report, nlp) && attempt.report.status != SolveStatus::kTimeout) {
+      MpccReport retry = retry_solver_.solve(discretization.nlp(), guess, -1.0, remainingBudget());
+      attempt.retried = rank(retry, nlp) > rank(attempt.report, nlp);
+      if (attempt.retried) {
+        retry.addEffort(attempt.report);  // both attempts' effort counts
+        attempt.report = std::move(retry);
+      } else {
+        attempt.report.addEffort(retry);
+      }
+    }
+    part.previous_solution = attempt.report.solution;
+    attempt.piece =
+        discretization.extract(attempt.report.solution.data(), start_time,
+                               options_.activity_tolerance, options_.penetration_tolerance);
+    return attempt;
+  }
+
+  /// The part of that length and kind, built when first needed.
+  Part& partOf(int tenths, int middles, Kind kind) {
+    const auto key = std::make_tuple(tenths, middles, kind);
+    const auto found = parts_.find(key);
+    if (found != parts_.end()) return found->second;
+    OcpDefinition problem = step_problem_;
+    problem.horizon *= std::pow(0.1, tenths) * std::pow(0.4, middles);
+    DiscretizationOptions discretization = options_.discretization;
+    discretization.switch_detection = discretization.switch_detection && kind != kFixedSteps;
+    if (kind == kRefined) discretization.num_elements *= 2;
+    Part part{
+        problem.horizon, discretization.num_elements, discretize(problem, discretization), {}};
+    return parts_.emplace(key, std::move(part)).first->second;
+  }
+
+  /// What is left of the wall-time budget; negative (none) without a budget.
+  double remainingBudget() const {
+    return std::isfinite(options_.wall_time_budget)
+               ? std::max(0.0, options_.wall_time_budget - stopwatch_.wallSeconds())
+               : -1.0;
+  }
+
+  const SimulationOptions& options_;
+  Stopwatch stopwatch_;
+  OcpDefinition step_problem_;
+  MpccSolver solver_, retry_solver_;
+  Eigen::VectorXd state_;
+  Eigen::VectorXd previous_control_;  ///< of the last part in the trajectory
+  /// By (tenths, middles, kind); a map's references stay valid as parts are added.
+  std::map<std::tuple<int, int, Kind>, Part> parts_;
+  bool split_ = false;  ///< the current step was split
+  std::string failure_;
+};
+
+FesdIntegrator::FesdIntegrator(std::shared_ptr<const DynamicsModel> model,
+                               SimulationOptions options)
+    : model_(std::move(model)), options_(std::move(options)) {
+  if (!model_) throw std::invalid_argument("FesdIntegrator: no model");
+}
+
+SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double horizon, int num_steps,
+                                          const std::vector<Eigen::VectorXd>& controls) {
+  if (num_steps < 1) throw std::invalid_argument("FesdIntegrator: num_steps must be >= 1");
+  const int nu = model_->controlSize();
+  if (!(controls.size() == static_cast<size_t>(num_steps) || controls.size() == 1 ||
+        (controls.empty() && nu == 0))) {
+    throw std::invalid_argument("FesdIntegrator: give one control per step or a single one");
+  }
+  Run run(*this, x0, horizon / num_steps);
+  SimulationResult& result = run.result;
+  for (int step = 0; step < num_steps; ++step) {
+    const Eigen::VectorXd u =
+        controls.empty() ? Eigen::VectorXd() : controls[controls.size() == 1 ? 0 : step];
+    if (!run.step(step, u)) {
+      result.message = "step " + std::to_string(step) + " of " + std::to_string(num_steps) +
+                       " did not converge: " + run.failure();
+      break;
+    }
+    ++result.completed_steps;
+  }
+  classifySwitches(result.trajectory,
+                   run.discretization().activeAt(x0, options_.activity_tolerance),
+                   options_.activity_tolerance, options_.penetration_tolerance);
+  if (result.status == SolveStatus::kSuccess) {
+    std::ostringstream message;
+    message << "simulated " << num_steps << " step(s): " << result.totals.iterations
+            << " Ipopt iterations, " << result.trajectory.switches.size() << " switch(es)";
+    if (result.retried_steps > 0) message << ", " << result.retried_steps << " step(s) retried";
+    if (result.split_steps > 0) message << ", " << result.split_steps << " step(s) split";
+    if (result.refined_parts > 0) {
+      message << ", " << result.refined_parts << " part(s) refined";
+    }
+    result.message = message.str();
+  }
+  if (!result.trajectory.switchesResolved()) {
+    result.message += "; " + describeUnresolvedSwitches(result.trajectory.unresolved_switches);
+  }
+  result.totals.status = result.status;
+  result.totals.message = result.message;
+  result.totals.wall_seconds = run.wallSeconds();
+  result.totals.cpu_seconds = run.cpuSeconds();
+  return result;
+}
+
+}  // namespace fesd

@@ -1,0 +1,492 @@
+#include "fesd_trajopt/nlp/nlp_assembly.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace fesd {
+
+int SlotMap::slot(int row, int col) {
+  const long long key = (static_cast<long long>(row) << 32) | static_cast<unsigned int>(col);
+  const auto inserted = index_.emplace(key, pattern_.nonzeros());
+  if (inserted.second) pattern_.add(row, col);
+  return inserted.first->second;
+}
+
+namespace {
+/// A free side counts as zero (the pair as biactive) below this fraction of the largest free
+/// side: a failed polishing solve leaves such a side at its bound up to Ipopt's tolerance.
+constexpr double kBiactiveFraction = 1e-7;
+
+/// Hessian slots live in the lower triangle.
+int lowerSlot(SlotMap& slots, int a, int b) {
+  return slots.slot(std::max(a, b), std::min(a, b));
+}
+}  // namespace
+
+void NlpAssembly::checkNotFinalized() const {
+  if (finalized_) throw std::logic_error("NlpAssembly: structure is fixed after finalize()");
+}
+
+void NlpAssembly::checkFinalized() const {
+  if (!finalized_) throw std::logic_error("NlpAssembly: finalize() before evaluating");
+}
+
+int NlpAssembly::addVariables(int count, double lower, double upper, double initial) {
+  checkNotFinalized();
+  const int first = numVariables();
+  x_lower_.insert(x_lower_.end(), count, lower);
+  x_upper_.insert(x_upper_.end(), count, upper);
+  initial_.insert(initial_.end(), count, initial);
+  return first;
+}
+
+int NlpAssembly::addRows(int count, double lower, double upper) {
+  checkNotFinalized();
+  const int first = numConstraints();
+  g_lower_.insert(g_lower_.end(), count, lower);
+  g_upper_.insert(g_upper_.end(), count, upper);
+  return first;
+}
+
+int NlpAssembly::addRelaxedRows(int count, double scale) {
+  const int first = addRows(count, -scale * sigma_, scale * sigma_);
+  for (int r = 0; r < count; ++r) relaxed_rows_.push_back({first + r, scale});
+  return first;
+}
+
+void NlpAssembly::addLinear(int row, int variable, double coefficient) {
+  checkNotFinalized();
+  linear_.push_back({row, variable, coefficient});
+}
+
+void NlpAssembly::addLinear(int row, const LinearExpression& expression) {
+  for (const LinearTerm& term : expression) addLinear(row, term.variable, term.coefficient);
+}
+
+int NlpAssembly::addComplementarity(const LinearExpression& left, const LinearExpression& right,
+                                    double left_weight, double right_weight) {
+  const int row = addRows(1, -kInfinity, sigma_);
+  complementarities_.push_back({row, left, right, left_weight, right_weight, {}, {}, {}});
+  complementarity_rows_.push_back(row);
+  return row;
+}
+
+void NlpAssembly::addFunctionTerm(std::shared_ptr<const SmoothFunction> function,
+                                  std::vector<int> inputs, int scale_variable,
+                                  std::vector<Target> targets) {
+  checkNotFinalized();
+  if (static_cast<int>(inputs.size()) != function->inputSize()) {
+    throw std::invalid_argument("NlpAssembly: function term input size mismatch");
+  }
+  for (const Target& target : targets) {
+    if (target.row == kObjective && function->outputSize() != 1) {
+      throw std::invalid_argument("NlpAssembly: an objective term must be scalar");
+    }
+  }
+  terms_.push_back(
+      {std::move(function), std::move(inputs), scale_variable, std::move(targets), {}, {}, {}, {}});
+}
+
+void NlpAssembly::finalize() {
+  checkNotFinalized();
+  for (LinearEntry& entry : linear_) entry.slot = jacobian_slots_.slot(entry.row, entry.variable);
+  for (Complementarity& comp : complementarities_) {
+    for (const LinearTerm& t : comp.left) {
+      comp.left_slots.push_back(jacobian_slots_.slot(comp.row, t.variable));
+    }
+    for (const LinearTerm& t : comp.right) {
+      comp.right_slots.push_back(jacobian_slots_.slot(comp.row, t.variable));
+    }
+    for (const LinearTerm& l : comp.left) {
+      for (const LinearTerm& r : comp.right) {
+        comp.pair_slots.push_back(lowerSlot(hessian_slots_, l.variable, r.variable));
+      }
+    }
+  }
+  size_t scratch = 0;
+  for (FunctionTerm& term : terms_) {
+    const SmoothFunction& f = *term.function;
+    const SparsityPattern& jac = f.jacobianPattern();
+    for (const Target& target : term.targets) {
+      if (target.row == kObjective) continue;
+      for (int e = 0; e < jac.nonzeros(); ++e) {
+        term.jacobian_slots.push_back(
+            jacobian_slots_.slot(target.row + jac.rows[e], term.inputs[jac.cols[e]]));
+      }
+      if (term.scale_variable >= 0) {
+        for (int r = 0; r < f.outputSize(); ++r) {
+          term.scale_jacobian_slots.push_back(
+              jacobian_slots_.slot(target.row + r, term.scale_variable));
+        }
+      }
+    }
+    const SparsityPattern& hess = f.hessianPattern();
+    for (int e = 0; e < hess.nonzeros(); ++e) {
+      term.hessian_slots.push_back(
+          lowerSlot(hessian_slots_, term.inputs[hess.rows[e]], term.inputs[hess.cols[e]]));
+    }
+    if (term.scale_variable >= 0) {
+      term.scale_hessian_slots.assign(f.inputSize(), -1);
+      for (int e = 0; e < jac.nonzeros(); ++e) {
+        int& slot = term.scale_hessian_slots[jac.cols[e]];
+        if (slot < 0) {
+          slot = lowerSlot(hessian_slots_, term.scale_variable, term.inputs[jac.cols[e]]);
+        }
+      }
+    }
+    scratch =
+        std::max({scratch, static_cast<size_t>(f.inputSize()), static_cast<size_t>(f.outputSize()),
+                  static_cast<size_t>(jac.nonzeros()), static_cast<size_t>(hess.nonzeros())});
+  }
+  scratch_values_.resize(scratch);
+  scratch_jacobian_.resize(scratch);
+  scratch_hessian_.resize(scratch);
+  scratch_weights_.resize(scratch);
+  scratch_inputs_.resize(scratch);
+  finalized_ = true;
+}
+
+void NlpAssembly::setVariableBounds(int variable, double lower, double upper) {
+  x_lower_.at(variable) = lower;
+  x_upper_.at(variable) = upper;
+}
+
+void NlpAssembly::setRowBounds(int row, double lower, double upper) {
+  g_lower_.at(row) = lower;
+  g_upper_.at(row) = upper;
+}
+
+void NlpAssembly::getBounds(double* x_lower, double* x_upper, double* g_lower,
+                            double* g_upper) const {
+  std::copy(x_lower_.begin(), x_lower_.end(), x_lower);
+  std::copy(x_upper_.begin(), x_upper_.end(), x_upper);
+  std::copy(g_lower_.begin(), g_lower_.end(), g_lower);
+  std::copy(g_upper_.begin(), g_upper_.end(), g_upper);
+}
+
+double NlpAssembly::evaluateLinear(const LinearExpression& expression, const double* x) {
+  double value = 0.0;
+  for (const LinearTerm& t : expression) value += t.coefficient * x[t.variable];
+  return value;
+}
+
+namespace {
+/// Gathers a function term's argument vector from the NLP variables.
+const double* gather(const std::vector<int>& inputs, const double* x, std::vector<double>& z) {
+  for (size_t i = 0; i < inputs.size(); ++i) z[i] = x[inputs[i]];
+  return z.data();
+}
+}  // namespace
+
+double NlpAssembly::objective(const double* x) const {
+  checkFinalized();
+  double value = 0.0;
+  for (const FunctionTerm& term : terms_) {
+    for (const Target& target : term.targets) {
+      if (target.row != kObjective) continue;
+      term.function->evaluate(gather(term.inputs, x, scratch_inputs_), scratch_values_.data());
+      const double scale = term.scale_variable >= 0 ? x[term.scale_variable] : 1.0;
+      value += coefficient(target) * scale * scratch_values_[0];
+    }
+  }
+  return value;
+}
+
+void NlpAssembly::objectiveGradient(const double* x, double* gradient) const {
+  checkFinalized();
+  std::fill(gradient, gradient + numVariables(), 0.0);
+  for (const FunctionTerm& term : terms_) {
+    for (const Target& target : term.targets) {
+      if (target.row != kObjective) continue;
+      const double* z = gather(term.inputs, x, scratch_inputs_);
+      const SparsityPattern& jac = term.function->jacobianPattern();
+      term.function->evaluateJacobian(z, scratch_jacobian_.data());
+      const double scale = term.scale_variable >= 0 ? x[term.scale_variable] : 1.0;
+      for (int e = 0; e < jac.nonzeros(); ++e) {
+        gradient[term.inputs[jac.cols[e]]] += coefficient(target) * scale * scratch_jacobian_[e];
+      }
+      if (term.scale_variable >= 0) {
+        term.function->evaluate(z, scratch_values_.data());
+        gradient[term.scale_variable] += coefficient(target) * scratch_values_[0];
+      }
+    }
+  }
+}
+
+void NlpAssembly::constraints(const double* x, double* g) const {
+  checkFinalized();
+  std::fill(g, g + numConstraints(), 0.0);
+  for (const LinearEntry& entry : linear_) g[entry.row] += entry.coefficient * x[entry.variable];
+  for (const Complementarity& comp : complementarities_) {
+    g[comp.row] += evaluateLinear(comp.left, x) * evaluateLinear(comp.right, x);
+  }
+  for (const FunctionTerm& term : terms_) {
+    const int outputs = term.function->outputSize();
+    bool evaluated = false;
+    const double scale = term.scale_variable >= 0 ? x[term.scale_variable] : 1.0;
+    for (const Target& target : term.targets) {
+      if (target.row == kObjective) continue;
+      if (!evaluated) {
+        term.function->evaluate(gather(term.inputs, x, scratch_inputs_), scratch_values_.data());
+        evaluated = true;
+      }
+      for (int r = 0; r < outputs; ++r) {
+        g[target.row + r] += coefficient(target) * scale * scratch_values_[r];
+      }
+    }
+  }
+}
+
+void NlpAssembly::jacobian(const double* x, double* values) const {
+  checkFinalized();
+  std::fill(values, values + jacobian_slots_.pattern().nonzeros(), 0.0);
+  for (const LinearEntry& entry : linear_) values[entry.slot] += entry.coefficient;
+  for (const Complementarity& comp : complementarities_) {
+    const double left = evaluateLinear(comp.left, x), right = evaluateLinear(comp.right, x);
+    for (size_t i = 0; i < comp.left.size(); ++i) {
+      values[comp.left_slots[i]] += comp.left[i].coefficient * right;
+    }
+    for (size_t i = 0; i < comp.right.size(); ++i) {
+      values[comp.right_slots[i]] += comp.right[i].coefficient * left;
+    }
+  }
+  for (const FunctionTerm& term : terms_) {
+    if (term.jacobian_slots.empty() && term.scale_jacobian_slots.empty()) continue;
+    const SmoothFunction& f = *term.function;
+    const double* z = gather(term.inputs, x, scratch_inputs_);
+    const int nnz = f.jacobianPattern().nonzeros(), outputs = f.outputSize();
+    f.evaluateJacobian(z, scratch_jacobian_.data());
+    const bool scaled = term.scale_variable >= 0;
+    const double scale = scaled ? x[term.scale_variable] : 1.0;
+    if (scaled) f.evaluate(z, scratch_values_.data());
+    int target_index = 0;
+    for (const Target& target : term.targets) {
+      if (target.row == kObjective) continue;
+      const int* slots = term.jacobian_slots.data() + target_index * nnz;
+      for (int e = 0; e < nnz; ++e) {
+        values[slots[e]] += coefficient(target) * scale * scratch_jacobian_[e];
+      }
+      if (scaled) {
+        const int* scale_slots = term.scale_jacobian_slots.data() + target_index * outputs;
+        for (int r = 0; r < outputs; ++r) {
+          values[scale_slots[r]] += coefficient(target) * scratch_values_[r];
+        }
+      }
+      ++target_index;
+    }
+  }
+}
+
+void NlpAssembly::termWeights(const FunctionTerm& term, double objective_factor,
+                              const double* multipliers, double* weights) const {
+  const int outputs = term.function->outputSize();
+  std::fill(weights, weights + outputs, 0.0);
+  for (const Target& target : term.targets) {
+    if (target.row == kObjective) {
+      weights[0] += coefficient(target) * objective_factor;
+    } else {
+      for (int r = 0; r < outputs; ++r) {
+        weights[r] += coefficient(target) * multipliers[target.row + r];
+      }
+    }
+  }
+}
+
+void NlpAssembly::hessian(const double* x, double objective_factor, const double* multipliers,
+                          double* values) const {
+  checkFinalized();
+  std::fill(values, values + hessian_slots_.pattern().nonzeros(), 0.0);
+  for (const Complementarity& comp : complementarities_) {
+    const double multiplier = multipliers[comp.row];
+    int k = 0;
+    for (const LinearTerm& l : comp.left) {
+      for (const LinearTerm& r : comp.right) {
+        // A variable on both sides contributes d^2(x*x)/dx^2 = 2 on the diagonal.
+        const double factor = l.variable == r.variable ? 2.0 : 1.0;
+        values[comp.pair_slots[k++]] += factor * multiplier * l.coefficient * r.coefficient;
+      }
+    }
+  }
+  for (const FunctionTerm& term : terms_) {
+    const SmoothFunction& f = *term.function;
+    const double* z = gather(term.inputs, x, scratch_inputs_);
+    double* weights = scratch_weights_.data();
+    termWeights(term, objective_factor, multipliers, weights);
+    const bool scaled = term.scale_variable >= 0;
+    const double scale = scaled ? x[term.scale_variable] : 1.0;
+    const int hess_nnz = f.hessianPattern().nonzeros();
+    if (hess_nnz > 0) {
+      f.evaluateHessian(z, weights, scratch_hessian_.data());
+      for (int e = 0; e < hess_nnz; ++e)
+        values[term.hessian_slots[e]] += scale * scratch_hessian_[e];
+    }
+    if (scaled) {
+      // d^2/(dh dz) of h * w^T F(z) is J(z)^T w.
+      const SparsityPattern& jac = f.jacobianPattern();
+      f.evaluateJacobian(z, scratch_jacobian_.data());
+      for (int e = 0; e < jac.nonzeros(); ++e) {
+        values[term.scale_hessian_slots[jac.cols[e]]] +=
+            weights[jac.rows[e]] * scratch_jacobian_[e];
+      }
+    }
+  }
+}
+
+void NlpAssembly::setRelaxation(double sigma) {
+  sigma_ = sigma;
+  for (int row : complementarity_rows_) g_upper_[row] = sigma;
+  for (const auto& [row, scale] : relaxed_rows_) setRowBounds(row, -scale * sigma, scale * sigma);
+}
+
+NlpAssembly::ActiveSetChoice NlpAssembly::chooseActiveSet(const double* x) const {
+  const int pairs = static_cast<int>(complementarities_.size());
+  ActiveSetChoice choice;
+  choice.left_is_zero.resize(pairs);
+  choice.ambiguity.resize(pairs);
+  // A side with a fixed nonzero term (data, e.g. c or lambda at a step's start point) cannot
+  // vanish, so the other side must, however small this side is at x.
+  const auto canVanish = [this](const std::vector<LinearTerm>& side) {
+    for (const LinearTerm& t : side) {
+      const double value = x_lower_[t.variable];
+      if (value == x_upper_[t.variable] && std::fabs(value) > kNegligibleFixedValue) return false;
+    }
+    return true;
+  };
+  for (int p = 0; p < pairs; ++p) {
+    const Complementarity& comp = complementarities_[p];
+    const bool left_can_vanish = canVanish(comp.left), right_can_vanish = canVanish(comp.right);
+    if (!left_can_vanish && !right_can_vanish) {
+      choice.valid = false;
+      return choice;
+    }
+    const double left = comp.left_weight * evaluateLinear(comp.left, x);
+    const double right = comp.right_weight * evaluateLinear(comp.right, x);
+    choice.left_is_zero[p] = left_can_vanish && (left <= right || !right_can_vanish);
+    const double larger = std::max(std::fabs(left), std::fabs(right));
+    const bool decided = !left_can_vanish || !right_can_vanish || larger == 0.0;
+    choice.ambiguity[p] = decided ? 0.0 : std::min(std::fabs(left), std::fabs(right)) / larger;
+  }
+  return choice;
+}
+
+std::vector<bool> NlpAssembly::identifyActiveSet(const double* x) const {
+  ActiveSetChoice choice = chooseActiveSet(x);
+  return choice.valid ? choice.left_is_zero : std::vector<bool>();
+}
+
+bool NlpAssembly::fixActiveSet(const double* x, int flip) {
+  releaseActiveSet();
+  const int pairs = static_cast<int>(complementarities_.size());
+  ActiveSetChoice choice = chooseActiveSet(x);
+  if (!choice.valid) return false;
+  std::vector<bool>& left_is_zero = choice.left_is_zero;
+  const std::vector<double>& ambiguity = choice.ambiguity;
+  if (flip >= 0) {
+    std::vector<int> order(pairs);
+    for (int p = 0; p < pairs; ++p) order[p] = p;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return ambiguity[a] > ambiguity[b]; });
+    // Only pairs whose sides are comparable are worth a retry; the rest are decided.
+    if (flip >= pairs || ambiguity[order[flip]] < 1e-3) return false;
+    left_is_zero[order[flip]] = !left_is_zero[order[flip]];
+  }
+  return fixGivenActiveSet(left_is_zero, x);
+}
+
+bool NlpAssembly::fixGivenActiveSet(const std::vector<bool>& left_is_zero, const double* x) {
+  releaseActiveSet();
+  const int pairs = static_cast<int>(complementarities_.size());
+  if (static_cast<int>(left_is_zero.size()) != pairs) return false;
+  std::vector<int> to_fix;
+  for (int p = 0; p < pairs; ++p) {
+    const Complementarity& comp = complementarities_[p];
+    for (const LinearTerm& t : left_is_zero[p] ? comp.left : comp.right) {
+      if (x_lower_[t.variable] == x_upper_[t.variable]) {
+        // Data: it must be (negligibly close to) zero to be the zero side.
+        if (std::fabs(x_lower_[t.variable]) > kNegligibleFixedValue) return false;
+        continue;
+      }
+      if (t.coefficient <= 0.0 || x_lower_[t.variable] != 0.0) return false;
+      to_fix.push_back(t.variable);
+    }
+  }
+  saved_x_lower_ = x_lower_;
+  saved_x_upper_ = x_upper_;
+  saved_g_lower_ = g_lower_;
+  saved_g_upper_ = g_upper_;
+  for (int variable : to_fix) x_upper_[variable] = 0.0;
+  for (int row : complementarity_rows_) g_upper_[row] = kInfinity;
+  fixed_left_ = left_is_zero;
+  if (hook_) hook_(x);
+  return true;
+}
+
+std::vector<bool> NlpAssembly::flipBiactivePairs(const double* x) const {
+  if (saved_x_lower_.empty()) throw std::logic_error("flipBiactivePairs: no active set is fixed");
+  double largest = 0.0;
+  std::vector<double> free_sides(complementarities_.size());
+  for (size_t p = 0; p < complementarities_.size(); ++p) {
+    const Complementarity& comp = complementarities_[p];
+    free_sides[p] = fixed_left_[p] ? comp.right_weight * evaluateLinear(comp.right, x)
+                                   : comp.left_weight * evaluateLinear(comp.left, x);
+    largest = std::max(largest, std::fabs(free_sides[p]));
+  }
+  std::vector<bool> flipped = fixed_left_;
+  bool any = false;
+  for (size_t p = 0; p < complementarities_.size(); ++p) {
+    if (free_sides[p] <= kBiactiveFraction * largest) {
+      flipped[p] = !flipped[p];
+      any = true;
+    }
+  }
+  return any ? flipped : std::vector<bool>();
+}
+
+void NlpAssembly::releaseActiveSet() {
+  if (saved_x_lower_.empty()) return;
+  x_lower_.swap(saved_x_lower_);
+  x_upper_.swap(saved_x_upper_);
+  g_lower_.swap(saved_g_lower_);
+  g_upper_.swap(saved_g_upper_);
+  saved_x_lower_.clear();
+}
+
+double NlpAssembly::biactiveDescent(const double* x, const double* multipliers) const {
+  if (saved_x_lower_.empty()) throw std::logic_error("biactiveDescent: no active set is fixed");
+  const int n = numVariables();
+  std::vector<double> gradient(n), jacobian_values(jacobian_slots_.pattern().nonzeros());
+  objectiveGradient(x, gradient.data());
+  double scale = 1.0;
+  for (double g : gradient) scale = std::max(scale, std::fabs(g));
+  std::vector<double> lagrangian_gradient = gradient;
+  jacobian(x, jacobian_values.data());
+  const SparsityPattern& pattern = jacobian_slots_.pattern();
+  for (size_t e = 0; e < jacobian_values.size(); ++e) {
+    lagrangian_gradient[pattern.cols[e]] += multipliers[pattern.rows[e]] * jacobian_values[e];
+  }
+  double descent = 0.0;
+  for (size_t p = 0; p < complementarities_.size(); ++p) {
+    const Complementarity& comp = complementarities_[p];
+    const LinearExpression& fixed = fixed_left_[p] ? comp.left : comp.right;
+    const LinearExpression& free = fixed_left_[p] ? comp.right : comp.left;
+    if (evaluateLinear(free, x) > kNegligibleFixedValue) continue;
+    for (const LinearTerm& t : fixed) {
+      // Data stays fixed; a side fixed by the active set was released from saved bounds [0, .].
+      if (saved_x_lower_[t.variable] == saved_x_upper_[t.variable]) continue;
+      descent = std::max(descent, -lagrangian_gradient[t.variable] / scale);
+    }
+  }
+  return descent;
+}
+
+double NlpAssembly::complementarityResidual(const double* x) const {
+  double residual = 0.0;
+  for (const Complementarity& comp : complementarities_) {
+    residual =
+        std::max(residual, std::fabs(evaluateLinear(comp.left, x) * evaluateLinear(comp.right, x)));
+  }
+  return residual;
+}
+
+}  // namespace fesd

@@ -1,0 +1,141 @@
+#include "fesd_trajopt/ocp/ocp_solver.h"
+
+#include <limits>
+#include <stdexcept>
+
+namespace fesd {
+
+namespace {
+
+HomotopyOptions fixedGridHomotopy(const OcpOptions& options) {
+  HomotopyOptions stage = options.homotopy;
+  stage.minimum_sigma = options.fixed_grid_until_sigma;
+  stage.polish_active_set = false;
+  return stage;
+}
+
+/// The solver's message, and a warning when the trajectory has unresolved switches.
+std::string resultMessage(const MpccReport& report, const Trajectory& trajectory) {
+  if (trajectory.switchesResolved()) return report.message;
+  return report.message + "; " + describeUnresolvedSwitches(trajectory.unresolved_switches);
+}
+
+HomotopyOptions guessHomotopy(const OcpOptions& options) {
+  HomotopyOptions homotopy = options.homotopy;
+  homotopy.early_polish_sigma = options.guess_early_polish_sigma;
+  return homotopy;
+}
+
+}  // namespace
+
+OcpSolver::OcpSolver(OcpDefinition ocp, OcpOptions options)
+    : options_(std::move(options)),
+      discretization_(discretize(ocp, options_.discretization)),
+      solver_(options_.homotopy),
+      fixed_grid_solver_(fixedGridHomotopy(options_)),
+      guess_solver_(guessHomotopy(options_)) {
+  if (discretization_->stepsAreFree() && options_.fixed_grid_until_sigma > 0.0) {
+    DiscretizationOptions fixed = options_.discretization;
+    fixed.switch_detection = false;
+    fixed_grid_ = discretize(ocp, fixed);
+  }
+}
+
+std::string startName(OcpStart start, const std::string& guess) {
+  switch (start) {
+    case OcpStart::kConstant:
+      return "constant";
+    case OcpStart::kGuess:
+      return guess;
+    case OcpStart::kConstantAfterGuess:
+      return "constant after a failed solve from the " + guess;
+    case OcpStart::kPrevious:
+      return "previous solution";
+  }
+  return "unknown";
+}
+
+OcpSolution OcpSolver::solve() {
+  return solveFromConstant(options_.homotopy.wall_time_budget);
+}
+
+OcpSolution OcpSolver::solveFromConstant(double wall_time_budget) {
+  if (!fixed_grid_) {
+    return finish(solver_.solve(discretization_->nlp(), discretization_->constantGuess(), -1.0,
+                                std::max(0.0, wall_time_budget)),
+                  *discretization_);
+  }
+  MpccReport fixed = fixed_grid_solver_.solve(fixed_grid_->nlp(), fixed_grid_->constantGuess(),
+                                              -1.0, std::max(0.0, wall_time_budget));
+  const double remaining = wall_time_budget - fixed.wall_seconds;
+  if (fixed.status == SolveStatus::kTimeout || fixed.history.empty()) {
+    return finish(std::move(fixed), *fixed_grid_);
+  }
+  const double sigma = fixed.history.back().sigma * options_.homotopy.sigma_reduction;
+  OcpSolution solution =
+      finish(solver_.solve(discretization_->nlp(),
+                           discretization_->adoptedGuess(*fixed_grid_, fixed.solution), sigma,
+                           std::max(0.0, remaining)),
+             *discretization_);
+  // One homotopy in two stages: report it as such.
+  solution.report.history.insert(solution.report.history.begin(), fixed.history.begin(),
+                                 fixed.history.end());
+  solution.report.addEffort(fixed);
+  solution.report.message = describe(solution.report, options_.homotopy.complementarity_tolerance) +
+                            " (" + std::to_string(fixed.history.size()) +
+                            " step(s) on the fixed grid)";
+  solution.message = resultMessage(solution.report, solution.trajectory);
+  return solution;
+}
+
+OcpSolution OcpSolver::solve(const OcpSolution& previous) {
+  if (static_cast<int>(previous.report.solution.size()) != discretization_->nlp().numVariables()) {
+    throw std::invalid_argument("OcpSolver: the warm start comes from a different discretisation");
+  }
+  OcpSolution solution =
+      finish(solver_.solve(discretization_->nlp(), previous.report, options_.warm_start_sigma),
+             *discretization_);
+  solution.start = OcpStart::kPrevious;
+  return solution;
+}
+
+OcpSolution OcpSolver::solve(const TrajectoryGuess& guess) {
+  OcpSolution from_guess =
+      finish(guess_solver_.solve(discretization_->nlp(), discretization_->guessFrom(guess),
+                                 options_.guess_sigma),
+             *discretization_);
+  from_guess.start = OcpStart::kGuess;
+  if (from_guess.status == SolveStatus::kSuccess || from_guess.status == SolveStatus::kTimeout) {
+    return from_guess;
+  }
+  OcpSolution solution =
+      solveFromConstant(options_.homotopy.wall_time_budget - from_guess.report.wall_seconds);
+  solution.start = OcpStart::kConstantAfterGuess;
+  solution.report.history.insert(solution.report.history.begin(), from_guess.report.history.begin(),
+                                 from_guess.report.history.end());
+  solution.report.addEffort(from_guess.report);
+  solution.message = "from the guess: " + statusName(from_guess.status) +
+                     "; then from the constant start: " + solution.message;
+  return solution;
+}
+
+OcpSolution OcpSolver::finish(MpccReport report, const Discretization& source) const {
+  OcpSolution solution;
+  solution.report = std::move(report);
+  solution.status = solution.report.status;
+  solution.trajectory = source.extract(solution.report.solution.data(), 0.0,
+                                       options_.activity_tolerance, options_.penetration_tolerance);
+  solution.message = resultMessage(solution.report, solution.trajectory);
+  return solution;
+}
+
+double resimulationError(const OcpDefinition& ocp, const OcpSolution& solution,
+                         const SimulationOptions& fine) {
+  FesdIntegrator integrator(ocp.model, fine);
+  const SimulationResult result = integrator.simulate(
+      ocp.initial_state, ocp.horizon, ocp.num_intervals, solution.trajectory.controls);
+  if (result.status != SolveStatus::kSuccess) return std::numeric_limits<double>::infinity();
+  return (result.trajectory.finalState() - solution.trajectory.finalState()).norm();
+}
+
+}  // namespace fesd

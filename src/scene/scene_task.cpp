@@ -1,0 +1,308 @@
+#include "fesd_trajopt/scene/scene_task.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "fesd_trajopt/function/quadratic_function.h"
+#include "fesd_trajopt/nlp/nlp_assembly.h"
+
+namespace fesd {
+namespace {
+
+constexpr double kInf = NlpAssembly::kInfinity;
+
+bool finite(const Eigen::VectorXd& v) {
+  return v.allFinite();
+}
+
+std::string vectorProblem(const Eigen::VectorXd& v, int dimension, double max_coordinate) {
+  if (v.size() != dimension) {
+    return "has " + std::to_string(v.size()) + " coordinates, the scene " +
+           std::to_string(dimension);
+  }
+  if (!finite(v)) return "is not finite";
+  if (v.cwiseAbs().maxCoeff() > max_coordinate) return "is beyond the coordinate limit";
+  return "";
+}
+
+/// Bounds that are either empty or one per coordinate, not NaN, lower <= upper.
+std::string boundsProblem(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                          int dimension) {
+  for (const Eigen::VectorXd* b : {&lower, &upper}) {
+    if (b->size() != 0 && b->size() != dimension) return "have the wrong number of coordinates";
+    if (b->size() != 0 && b->hasNaN()) return "contain NaN";
+  }
+  if (lower.size() && upper.size() && (lower.array() > upper.array()).any()) {
+    return "are contradictory (lower > upper)";
+  }
+  return "";
+}
+
+/// Per coordinate: where a body can be during the task (start +- reach, within its workspace).
+struct Box {
+  Eigen::VectorXd low, high;
+};
+
+Box reachableBox(const SceneTask& task, int body, double reach) {
+  const SceneBody& b = task.scene.bodies()[body];
+  const BodyTask& t = task.bodies[body];
+  Box box{b.position.array() - reach, b.position.array() + reach};
+  if (t.workspace_lower.size()) box.low = box.low.cwiseMax(t.workspace_lower);
+  if (t.workspace_upper.size()) box.high = box.high.cwiseMin(t.workspace_upper);
+  return box;
+}
+
+/// Smallest distance between points of two boxes.
+double boxDistance(const Box& a, const Box& b) {
+  const Eigen::ArrayXd gap =
+      (a.low.array() - b.high.array()).max(b.low.array() - a.high.array()).max(0.0);
+  return std::sqrt(gap.square().sum());
+}
+
+std::string formatNumber(double value) {
+  std::ostringstream out;
+  out.precision(3);
+  out << value;
+  return out.str();
+}
+
+bool isAllowed(const SceneTask& task, const ContactPair& pair) {
+  return task.allowed_pairs.empty() ||
+         std::find(task.allowed_pairs.begin(), task.allowed_pairs.end(), pair) !=
+             task.allowed_pairs.end();
+}
+
+/// A lower bound on the gap between a pair's surfaces during the task, each body within its
+/// reach of its start (and within its workspace).
+double separationBound(const SceneTask& task, const ContactPair& pair,
+                       const std::vector<double>& reach) {
+  const DiscScene& scene = task.scene;
+  const Box body = reachableBox(task, pair.body, reach[pair.body]);
+  const double radius = scene.bodies()[pair.body].radius;
+  switch (pair.kind) {
+    case ContactPair::Kind::kBody:
+      return boxDistance(body, reachableBox(task, pair.other, reach[pair.other])) - radius -
+             scene.bodies()[pair.other].radius;
+    case ContactPair::Kind::kObstacle: {
+      const SceneObstacle& o = scene.obstacles()[pair.other];
+      return boxDistance(body, Box{o.position, o.position}) - radius - o.radius;
+    }
+    case ContactPair::Kind::kWall: {
+      const SceneWall& w = scene.walls()[pair.other];
+      return (w.normal.array() * body.low.array()).min(w.normal.array() * body.high.array()).sum() -
+             w.offset - radius;
+    }
+  }
+  return 0.0;
+}
+
+/// How far each body can get from its start. The projected velocity is never longer than the
+/// controls' (the projection does not expand), so no body outruns T |u|_max. A passive body
+/// moves only when pushed: it gets that reach once it can touch a body that moves (through an
+/// allowed pair), and keeps 0 otherwise.
+std::vector<double> bodyReach(const SceneTask& task) {
+  const DiscScene& scene = task.scene;
+  double speed_squared = 0.0;
+  for (size_t b = 0; b < scene.bodies().size(); ++b) {
+    if (scene.bodies()[b].actuated) {
+      speed_squared += scene.dimension() * task.bodies[b].max_speed * task.bodies[b].max_speed;
+    }
+  }
+  const double reach = task.horizon * std::sqrt(speed_squared);
+  std::vector<double> reaches(scene.bodies().size(), 0.0);
+  for (size_t b = 0; b < scene.bodies().size(); ++b) {
+    if (scene.bodies()[b].actuated) reaches[b] = reach;
+  }
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const ContactPair& pair : scene.allPairs()) {
+      if (pair.kind != ContactPair::Kind::kBody || !isAllowed(task, pair)) continue;
+      const bool first_moves = reaches[pair.body] > 0.0, second_moves = reaches[pair.other] > 0.0;
+      if (first_moves == second_moves || separationBound(task, pair, reaches) > 0.0) continue;
+      reaches[first_moves ? pair.other : pair.body] = reach;
+      grew = true;
+    }
+  }
+  return reaches;
+}
+
+}  // namespace
+
+std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
+  const DiscScene& scene = task.scene;
+  const int dim = scene.dimension();
+  if (dim != 2 && dim != 3) return "the scene must be planar (2) or spatial (3)";
+  if (scene.bodies().empty()) return "the scene has no bodies (no movable URDF link, none added)";
+  if (static_cast<int>(scene.bodies().size()) > limits.max_bodies) {
+    return "too many bodies: " + std::to_string(scene.bodies().size()) + " > " +
+           std::to_string(limits.max_bodies);
+  }
+  if (static_cast<int>(scene.obstacles().size()) > limits.max_obstacles) {
+    return "too many obstacles (limit " + std::to_string(limits.max_obstacles) + ")";
+  }
+  if (static_cast<int>(scene.walls().size()) > limits.max_walls) {
+    return "too many walls (limit " + std::to_string(limits.max_walls) + ")";
+  }
+  if (task.bodies.size() != scene.bodies().size()) return "one body task per body is needed";
+  if (!(task.horizon > 0.0) || !std::isfinite(task.horizon) || task.horizon > limits.max_horizon) {
+    return "the horizon must be in (0, " + formatNumber(limits.max_horizon) + "], got " +
+           formatNumber(task.horizon);
+  }
+  if (task.num_intervals < 1 || task.num_intervals > limits.max_intervals) {
+    return "the number of control intervals must be in 1.." + std::to_string(limits.max_intervals) +
+           ", got " + std::to_string(task.num_intervals);
+  }
+  if (!(task.control_weight >= 0.0) || !std::isfinite(task.control_weight)) {
+    return "the control weight must be finite and >= 0";
+  }
+  std::set<std::string> names;
+  for (size_t b = 0; b < scene.bodies().size(); ++b) {
+    const SceneBody& body = scene.bodies()[b];
+    const BodyTask& t = task.bodies[b];
+    const std::string who = "body '" + body.name + "'";
+    if (!names.insert(body.name).second) return "two bodies are named '" + body.name + "'";
+    if (!(body.radius > 0.0) || !std::isfinite(body.radius)) {
+      return who + " has radius " + formatNumber(body.radius) + " (must be > 0 and finite)";
+    }
+    std::string problem = vectorProblem(body.position, dim, limits.max_coordinate);
+    if (!problem.empty()) return who + ": the initial position " + problem;
+    if (!(t.max_speed >= 0.0) || !std::isfinite(t.max_speed)) {
+      return who + ": the speed bound must be finite and >= 0";
+    }
+    if (t.target.size()) {
+      problem = vectorProblem(t.target, dim, limits.max_coordinate);
+      if (!problem.empty()) return who + ": the target " + problem;
+    }
+    if (!(t.target_weight >= 0.0) || !std::isfinite(t.target_weight)) {
+      return who + ": the target weight must be finite and >= 0";
+    }
+    if (t.target_weight > 0.0 && t.target.size() == 0) return who + " has a weight but no target";
+    problem = boundsProblem(t.workspace_lower, t.workspace_upper, dim);
+    if (!problem.empty()) return who + ": the workspace bounds " + problem;
+    if ((t.workspace_lower.size() && (body.position.array() < t.workspace_lower.array()).any()) ||
+        (t.workspace_upper.size() && (body.position.array() > t.workspace_upper.array()).any())) {
+      return who + " starts outside its workspace bounds";
+    }
+  }
+  if (scene.controlSize() == 0) return "no body is actuated, so nothing can move";
+  for (const SceneObstacle& o : scene.obstacles()) {
+    if (!(o.radius > 0.0) || !std::isfinite(o.radius)) {
+      return "obstacle '" + o.name + "' has radius " + formatNumber(o.radius) +
+             " (must be > 0 and finite)";
+    }
+    const std::string problem = vectorProblem(o.position, dim, limits.max_coordinate);
+    if (!problem.empty()) return "obstacle '" + o.name + "': the position " + problem;
+  }
+  for (const SceneWall& w : scene.walls()) {
+    if (w.normal.size() != dim || !finite(w.normal) || std::fabs(w.normal.norm() - 1.0) > 1e-9 ||
+        !std::isfinite(w.offset)) {
+      return "wall '" + w.name + "' needs a finite unit normal with " + std::to_string(dim) +
+             " coordinates and a finite offset";
+    }
+  }
+  const Eigen::VectorXd x0 = scene.initialState();
+  const std::vector<ContactPair> all = scene.allPairs();
+  for (const ContactPair& pair : all) {
+    const double c = scene.constraintValue(pair, x0);
+    if (c < -1e-9 * (1.0 + x0.cwiseAbs().maxCoeff())) {
+      return scene.pairName(pair) + " overlap at the start";
+    }
+  }
+  for (const ContactPair& allowed : task.allowed_pairs) {
+    if (std::find(all.begin(), all.end(), allowed) == all.end())
+      return "an allowed contact pair does not exist in the scene";
+  }
+  return "";
+}
+
+std::string infeasibility(const SceneTask& task) {
+  const std::vector<double> reach = bodyReach(task);
+  for (size_t b = 0; b < task.bodies.size(); ++b) {
+    const BodyTask& t = task.bodies[b];
+    if (t.target.size() == 0 || t.target_weight == 0.0) continue;
+    const std::string who = "body '" + task.scene.bodies()[b].name + "'";
+    if ((t.workspace_lower.size() && (t.target.array() < t.workspace_lower.array()).any()) ||
+        (t.workspace_upper.size() && (t.target.array() > t.workspace_upper.array()).any())) {
+      return who + " has its target outside its workspace bounds";
+    }
+    const Box box = reachableBox(task, static_cast<int>(b), reach[b]);
+    const double miss = boxDistance(box, Box{t.target, t.target});
+    if (miss > 0.0) {
+      return who + " cannot reach its target within the horizon: it stays at least " +
+             formatNumber(miss) + " away" +
+             (reach[b] > 0.0 ? "" : " (nothing that moves can push it)");
+    }
+  }
+  return "";
+}
+
+std::vector<PairDecision> decidePairs(const SceneTask& task) {
+  const std::vector<double> reach = bodyReach(task);
+  std::vector<PairDecision> decisions;
+  for (const ContactPair& pair : task.scene.allPairs()) {
+    if (!isAllowed(task, pair)) {
+      decisions.push_back({pair, false, "not among the allowed pairs"});
+      continue;
+    }
+    const bool moves = reach[pair.body] > 0.0 ||
+                       (pair.kind == ContactPair::Kind::kBody && reach[pair.other] > 0.0);
+    if (!moves) {
+      decisions.push_back({pair, false, "neither side can move: nothing can push them"});
+      continue;
+    }
+    const double separation = separationBound(task, pair, reach);
+    if (separation > 0.0) {
+      decisions.push_back({pair, false,
+                           "cannot touch within the horizon: reachable sets stay " +
+                               formatNumber(separation) + " apart"});
+    } else {
+      decisions.push_back({pair, true, "can touch within the horizon"});
+    }
+  }
+  return decisions;
+}
+
+OcpDefinition buildOcp(const SceneTask& task, const std::vector<ContactPair>& modelled) {
+  const DiscScene& scene = task.scene;
+  const int dim = scene.dimension(), nx = scene.stateSize(), nu = scene.controlSize();
+  OcpDefinition ocp;
+  ocp.model = scene.model(modelled);
+  ocp.initial_state = scene.initialState();
+  ocp.horizon = task.horizon;
+  ocp.num_intervals = task.num_intervals;
+  ocp.control_lower = Eigen::VectorXd::Zero(nu);
+  ocp.control_upper = Eigen::VectorXd::Zero(nu);
+  ocp.state_lower = Eigen::VectorXd::Constant(nx, -kInf);
+  ocp.state_upper = Eigen::VectorXd::Constant(nx, kInf);
+  Eigen::VectorXd terminal_weights = Eigen::VectorXd::Zero(nx), targets = ocp.initial_state;
+  for (int b = 0; b < static_cast<int>(scene.bodies().size()); ++b) {
+    const BodyTask& t = task.bodies[b];
+    const int first = scene.stateIndex(b);
+    if (scene.bodies()[b].actuated) {
+      ocp.control_lower.segment(scene.controlIndex(b), dim).setConstant(-t.max_speed);
+      ocp.control_upper.segment(scene.controlIndex(b), dim).setConstant(t.max_speed);
+    }
+    if (t.workspace_lower.size()) ocp.state_lower.segment(first, dim) = t.workspace_lower;
+    if (t.workspace_upper.size()) ocp.state_upper.segment(first, dim) = t.workspace_upper;
+    if (t.target.size() && t.target_weight > 0.0) {
+      terminal_weights.segment(first, dim).setConstant(t.target_weight);
+      targets.segment(first, dim) = t.target;
+    }
+  }
+  ocp.state_lower = ocp.state_lower.cwiseMax(-kInf);  // infinite bounds as Ipopt's infinity
+  ocp.state_upper = ocp.state_upper.cwiseMin(kInf);
+  if (nu > 0 && task.control_weight > 0.0) {
+    Eigen::VectorXd weights = Eigen::VectorXd::Zero(nx + nu);
+    weights.tail(nu).setConstant(task.control_weight);
+    ocp.lagrange_cost =
+        QuadraticFunction::weightedDistance(weights, Eigen::VectorXd::Zero(nx + nu));
+  }
+  if ((terminal_weights.array() != 0.0).any()) {
+    ocp.mayer_cost = QuadraticFunction::weightedDistance(terminal_weights, targets);
+  }
+  return ocp;
+}
+
+}  // namespace fesd

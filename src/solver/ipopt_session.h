@@ -1,0 +1,55 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <coin/IpIpoptApplication.hpp>
+
+#include "fesd_trajopt/solver/mpcc_solver.h"
+
+namespace fesd {
+
+/// Primal-dual point of an NLP, as Ipopt reports it and takes it for a warm start.
+struct PrimalDualPoint {
+  std::vector<double> x, bound_lower_multipliers, bound_upper_multipliers, constraint_multipliers;
+  bool has_multipliers = false;
+};
+
+/// What one Ipopt solve produced.
+struct NlpOutcome {
+  Ipopt::ApplicationReturnStatus status;
+  int iterations = 0;
+  double objective = 0.0;
+  double wall_seconds = 0.0;
+  double evaluation_seconds = 0.0;
+};
+
+/// One Ipopt application with fixed options, solving NlpProblems from a given primal-dual point.
+class IpoptSession {
+ public:
+  explicit IpoptSession(const IpoptSettings& settings);
+
+  /// What may change from one solve to the next.
+  struct SolveSettings {
+    double deadline_seconds = 0.0;  ///< steady-clock time to stop at; <= 0: none
+    double warm_start_mu = 1e-4;    ///< barrier parameter of a warm start
+    double tolerance = 1e-10;
+    double objective_scaling = 1.0;
+  };
+  /// Solves from `point` and overwrites it with Ipopt's final iterate; a point with multipliers
+  /// is a warm start.
+  NlpOutcome solve(const NlpProblem& problem, PrimalDualPoint& point,
+                   const SolveSettings& settings);
+
+  static std::string statusName(Ipopt::ApplicationReturnStatus status);
+  static bool converged(Ipopt::ApplicationReturnStatus status);
+
+ private:
+  IpoptSettings settings_;
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> application_;
+};
+
+/// Seconds on the steady clock, the time base of deadlines.
+double steadySeconds();
+
+}  // namespace fesd
