@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Starts the node on the default configuration and runs bench/node_roundtrip.py against it:
 # bench/node_roundtrip.sh [--cases=a,b] [--repeat=N]. Needs a built workspace.
-source "$(dirname "${BASH_SOURCE[0]}")/../scripts/common.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/../tools/common.sh"
 source_workspace
 roslaunch fesd_trajopt fesd_trajopt.launch >/dev/null 2>&1 &
 LAUNCH_PID=$!

@@ -50,7 +50,7 @@ void printDivergence(const fesd::OcpDefinition& ocp, const fesd::OcpSolution& so
   }
 }
 
-/// The BLAS variant scripts/with_blas.sh set, or "system".
+/// The BLAS variant tools/with_blas.sh set, or "system".
 const char* blasVariant() {
   const char* variant = std::getenv("FESD_BLAS_VARIANT");
   return variant ? variant : "system";

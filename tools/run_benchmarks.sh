@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates every benchmark table and plot in docs/benchmarks/ (CSV + PNG): installs what is
 # missing, builds (Release), runs the sweeps, plots. Took 30 min on the 2-core machine (docs/benchmarks/README.md).
-# scripts/run_benchmarks.sh [order|siconos|ocp|scaling|filippov ...] (default: all of them)
+# tools/run_benchmarks.sh [order|siconos|ocp|scaling|filippov ...] (default: all of them)
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 install_dependencies
 build_workspace
@@ -15,7 +15,7 @@ for part in "${PARTS[@]}"; do
   case "$part" in
     order)
       rosrun fesd_trajopt fesd_bench order-pds --repeat=3 >"$OUT/order_pds.csv"
-      "$ROS_PYTHON" "$REPO_DIR/scripts/fit_orders.py" "$OUT/order_pds.csv" >"$OUT/orders.csv"
+      "$ROS_PYTHON" "$REPO_DIR/tools/fit_orders.py" "$OUT/order_pds.csv" >"$OUT/orders.csv"
       ;;
     siconos)
       if [ -x "$WS_DIR/devel/lib/fesd_trajopt/siconos_example1" ]; then
@@ -31,7 +31,7 @@ for part in "${PARTS[@]}"; do
       rosrun fesd_trajopt fesd_bench order-filippov >"$OUT/order_filippov.csv"
       rosrun fesd_trajopt fesd_bench order-filippov --radau-stages=1 --gauss-stages= \
         --totals=256,512,1024 --elements=32 | tail -n +2 >>"$OUT/order_filippov.csv"
-      "$ROS_PYTHON" "$REPO_DIR/scripts/fit_orders.py" "$OUT/order_filippov.csv" \
+      "$ROS_PYTHON" "$REPO_DIR/tools/fit_orders.py" "$OUT/order_filippov.csv" \
         --from-total radau_iia:1=256 >"$OUT/orders_filippov.csv"
       rosrun fesd_trajopt fesd_bench ocp-filippov >"$OUT/ocp_filippov.csv"
       rosrun fesd_trajopt fesd_bench sign-ocp >"$OUT/sign_ocp.csv"
@@ -39,4 +39,4 @@ for part in "${PARTS[@]}"; do
     *) echo "unknown part '$part' (order, siconos, ocp, scaling, filippov)" >&2; exit 2 ;;
   esac
 done
-"$ROS_PYTHON" "$REPO_DIR/scripts/plot_benchmarks.py" "$OUT"
+"$ROS_PYTHON" "$REPO_DIR/tools/plot_benchmarks.py" "$OUT"

@@ -1,4 +1,5 @@
-# Shared by the README's commands: installs what is missing and builds the catkin workspace.
+# Shared by the README's commands: installs what is missing, builds the catkin workspace, runs
+# the demo.
 # Sourced, not executed. The workspace lives beside the clone (<clone>_catkin_ws, outside git),
 # not inside it: rosrun follows symlinks, and src/ links back to the clone.
 set -euo pipefail
@@ -16,7 +17,7 @@ DEBIAN_PACKAGES=(
   ros-std-msgs ros-geometry-msgs python3-rospy python3-std-msgs python3-geometry-msgs
   python3-visualization-msgs python3-rosservice python3-rostopic python3-rosnode
   coinor-libipopt-dev libeigen3-dev libgtest-dev libsiconos-kernel-dev
-  gnuplot-nox python3-matplotlib xvfb
+  gnuplot-nox python3-matplotlib xvfb clang-format
 )
 
 install_dependencies() {
@@ -42,9 +43,23 @@ build_workspace() {
     -DCATKIN_ENABLE_TESTING=ON -j2 "$@")
 }
 
+# Sources the workspace's devel space, or the space given (e.g. install).
 source_workspace() {
   set +u
   # shellcheck disable=SC1091
-  source "$WS_DIR/devel/setup.bash"
+  source "$WS_DIR/${1:-devel}/setup.bash"
   set -u
+}
+
+# The main job, headless: the node solves the default scene for the demo client, which prints a
+# summary. Fails unless SUCCESS (roslaunch does not pass on the client's exit code; its summary
+# line carries the status).
+run_demo() {
+  local log
+  log="$(mktemp)"
+  roslaunch fesd_trajopt demo.launch rviz:=false 2>&1 | tee "$log"
+  local status=0
+  grep -q "^fesd_trajopt demo: SUCCESS" "$log" || status=1
+  rm -f "$log"
+  return $status
 }

@@ -2,9 +2,9 @@
 # Runs a command under one of the BLAS/LAPACK builds Debian offers, whatever the system's
 # alternative points to, so that results can be compared across the kernels MUMPS may get:
 #
-#   scripts/with_blas.sh VARIANT CMD [ARGS...]   run CMD under VARIANT
-#   scripts/with_blas.sh all CMD [ARGS...]       run CMD under every variant in turn
-#   scripts/with_blas.sh list                    the variants and the library each one loads
+#   tools/with_blas.sh VARIANT CMD [ARGS...]   run CMD under VARIANT
+#   tools/with_blas.sh all CMD [ARGS...]       run CMD under every variant in turn
+#   tools/with_blas.sh list                    the variants and the library each one loads
 #
 # Variants: reference (libblas3 + liblapack3), openblas-prescott, openblas-haswell,
 # openblas-skylakex (libopenblas0-pthread with OPENBLAS_CORETYPE set), system (as installed).

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Renders the demo (node + client + rviz) under Xvfb and saves a screenshot of rviz showing the
-# solved default scene: scripts/screenshot_rviz.sh [output.png] (default docs/rviz_default_scene.png).
-# Needs a built workspace (scripts/run_default.sh) and imagemagick for `import`.
+# solved default scene: tools/screenshot_rviz.sh [output.png] (default docs/rviz_default_scene.png).
+# Needs a built workspace (tools/run_default.sh) and imagemagick for `import`.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 source_workspace
 OUTPUT="${1:-$REPO_DIR/docs/rviz_default_scene.png}"
