@@ -43,7 +43,7 @@ int ocpFilippov(const Arguments& args) {
         options.discretization.num_stages = n_s;
         options.discretization.num_elements = n_fe;
         options.discretization.switch_detection = method == "fesd";
-        options.discretization.filippov_step_equilibration = equilibration;
+        options.discretization.filippov.step_equilibration = equilibration;
         options.homotopy.wall_time_budget = budget;
         fesd::OcpSolver solver(ocp, options);
         const fesd::OcpSolution solution = solver.solve();

@@ -95,9 +95,9 @@ int ocpManipulation(const Arguments& args) {
   options.discretization.switch_detection = args.flag("fesd", true);
   options.discretization.step_bound = args.number("step-bound", options.discretization.step_bound);
   options.fixed_grid_until_sigma = args.number("fixed-grid-until", options.fixed_grid_until_sigma);
-  options.discretization.pds_step_equilibration = pdsStepEquilibration(args);
-  options.discretization.equilibration_big_m =
-      args.number("big-m", options.discretization.equilibration_big_m);
+  options.discretization.pds.step_equilibration = pdsStepEquilibration(args);
+  options.discretization.pds.equilibration_big_m =
+      args.number("big-m", options.discretization.pds.equilibration_big_m);
   applyHomotopyArguments(args, options.homotopy);
   const int repeat = args.integer("repeat", 1);
   fesd::SimulationOptions fine;

@@ -20,7 +20,7 @@ int orderFilippov(const Arguments& args) {
   const double kappa = args.number("kappa", defaults.homotopy.sigma_reduction);
   const fesd::StepEquilibration equilibration = stepEquilibration(args);
   const double relaxation = args.number("equilibration-relaxation",
-                                        defaults.discretization.filippov_equilibration_relaxation);
+                                        defaults.discretization.filippov.equilibration_relaxation);
   const fesd::SimulationOptions refinement = refinementArguments(args, false);
   args.rejectUnused();
 
@@ -44,8 +44,8 @@ int orderFilippov(const Arguments& args) {
           options.discretization.num_stages = ns;
           options.discretization.num_elements = elements;
           options.discretization.switch_detection = method == "fesd";
-          options.discretization.filippov_step_equilibration = equilibration;
-          options.discretization.filippov_equilibration_relaxation = relaxation;
+          options.discretization.filippov.step_equilibration = equilibration;
+          options.discretization.filippov.equilibration_relaxation = relaxation;
           options.homotopy.sigma_reduction = kappa;
           fesd::FesdIntegrator integrator(example::model(), options);
           const fesd::SimulationResult result =

@@ -60,7 +60,7 @@ int orderPds(const Arguments& args) {
   fesd::SimulationOptions defaults;
   const double sigma0 = args.number("sigma0", defaults.homotopy.sigma_initial);
   const double kappa = args.number("kappa", defaults.homotopy.sigma_reduction);
-  const double big_m = args.number("big-m", defaults.discretization.equilibration_big_m);
+  const double big_m = args.number("big-m", defaults.discretization.pds.equilibration_big_m);
   const fesd::PdsStepEquilibration equilibration = pdsStepEquilibration(args);
   const double comp_tol = args.number("comp-tol", defaults.homotopy.complementarity_tolerance);
   const std::string cross = args.text("cross", "sums");
@@ -88,8 +88,8 @@ int orderPds(const Arguments& args) {
         options.discretization.switch_detection = method == "fesd";
         options.homotopy.sigma_initial = sigma0;
         options.homotopy.sigma_reduction = kappa;
-        options.discretization.equilibration_big_m = big_m;
-        options.discretization.pds_step_equilibration = equilibration;
+        options.discretization.pds.equilibration_big_m = big_m;
+        options.discretization.pds.step_equilibration = equilibration;
         options.homotopy.complementarity_tolerance = comp_tol;
         options.homotopy.polish_active_set = polish;
         options.discretization.cross_complementarity =

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/discretization/fesd_discretization.h"
+#include "fesd_trajopt/discretization/pds_discretization.h"
 #include "fesd_trajopt/examples/circle_example.h"
 #include "fesd_trajopt/function/affine_function.h"
 #include "fesd_trajopt/function/quadratic_function.h"
@@ -222,8 +222,8 @@ TEST_P(NlpDerivatives, JacobianAndLagrangianHessianAgainstFiniteDifferences) {
   options.num_elements = 3;
   options.switch_detection = GetParam().switch_detection;
   options.cross_complementarity = GetParam().cross;
-  options.pds_step_equilibration = GetParam().equilibration;
-  fesd::FesdDiscretization discretization(beadOcp(), options);
+  options.pds.step_equilibration = GetParam().equilibration;
+  fesd::PdsDiscretization discretization(beadOcp(), options);
   const auto errors = fesd_test::checkRelaxedNlpAtRandomPoints(discretization.nlp(), 3, 17);
   EXPECT_LT(errors.jacobian, kTolerance);
   EXPECT_LT(errors.hessian, kTolerance);
@@ -244,8 +244,8 @@ TEST(NlpStructure, StandardMethodHasNoCrossComplementarityOrEquilibration) {
   fesd_options.num_elements = standard_options.num_elements = 3;
   standard_options.switch_detection = false;
   fesd::DiscretizationOptions big_m_options = fesd_options;
-  big_m_options.pds_step_equilibration = fesd::PdsStepEquilibration::kBigM;
-  fesd::FesdDiscretization with(beadOcp(), fesd_options), without(beadOcp(), standard_options),
+  big_m_options.pds.step_equilibration = fesd::PdsStepEquilibration::kBigM;
+  fesd::PdsDiscretization with(beadOcp(), fesd_options), without(beadOcp(), standard_options),
       big_m(beadOcp(), big_m_options);
   // Standard: one pair per stage and constraint. FESD: one product of sums per element and
   // constraint; with the paper's big-M equilibration also two max-KKT pairs per inner boundary

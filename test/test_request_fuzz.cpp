@@ -9,7 +9,7 @@
 #include <console_bridge/console.h>
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/discretization/fesd_discretization.h"
+#include "fesd_trajopt/discretization/pds_discretization.h"
 #include "fesd_trajopt/scene/moving_part.h"
 #include "fesd_trajopt/scene/scene_task.h"
 #include "fesd_trajopt/scene/urdf_scene.h"
@@ -204,7 +204,7 @@ void buildAndEvaluate(const fesd::SceneTask& task) {
   const fesd::OcpDefinition ocp = fesd::buildOcp(part.task, part.modelled);
   fesd::DiscretizationOptions options;
   options.num_elements = 2;
-  fesd::FesdDiscretization discretization(ocp, options);
+  fesd::PdsDiscretization discretization(ocp, options);
   const fesd::NlpAssembly& nlp = discretization.nlp();
   const std::vector<double> guess = discretization.constantGuess();
   ASSERT_EQ(static_cast<int>(guess.size()), nlp.numVariables());

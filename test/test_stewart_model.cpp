@@ -154,7 +154,7 @@ TEST_P(StewartNlpDerivatives, JacobianAndLagrangianHessianAgainstFiniteDifferenc
   options.num_elements = 3;
   options.switch_detection = GetParam().switch_detection;
   options.cross_complementarity = GetParam().cross;
-  options.filippov_step_equilibration = GetParam().equilibration;
+  options.filippov.step_equilibration = GetParam().equilibration;
   fesd::StewartDiscretization discretization(smallSlidingOcp(), options);
   const auto errors = fesd_test::checkRelaxedNlpAtRandomPoints(discretization.nlp(), 2, 17);
   EXPECT_LT(errors.jacobian, kTolerance);

@@ -40,8 +40,8 @@ void validateOcp(const OcpDefinition& ocp, const DiscretizationOptions& options)
   if (!(options.step_bound >= 0.0 && options.step_bound <= 1.0)) {
     throw std::invalid_argument("step_bound (gamma_h) must be in [0, 1]");
   }
-  if (!(options.equilibration_big_m > 0.0)) {
-    throw std::invalid_argument("equilibration_big_m must be positive");
+  if (!(options.pds.equilibration_big_m > 0.0)) {
+    throw std::invalid_argument("pds.equilibration_big_m must be positive");
   }
   if (ocp.initial_state.size() != nx) {
     throw std::invalid_argument("OcpDefinition: initial_state must have size n_x");

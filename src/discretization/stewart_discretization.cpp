@@ -211,7 +211,7 @@ void StewartDiscretization::buildComplementarity() {
 }
 
 void StewartDiscretization::buildStepEquilibration() {
-  if (!steps_free_ || options_.filippov_step_equilibration == StepEquilibration::kNone) return;
+  if (!steps_free_ || options_.filippov.step_equilibration == StepEquilibration::kNone) return;
   for (int k = 0; k < ocp_.num_intervals; ++k) {
     for (int n = 1; n < options_.num_elements; ++n) {
       const int element = k * options_.num_elements + n;
@@ -240,8 +240,8 @@ void StewartDiscretization::buildStepEquilibration() {
       }
       const EquilibrationResidual residual{
           eq.indicator, nominal_step_,
-          options_.filippov_step_equilibration == StepEquilibration::kTanhIndicator};
-      eq.relaxed_row = nlp_.addRelaxedRows(1, options_.filippov_equilibration_relaxation);
+          options_.filippov.step_equilibration == StepEquilibration::kTanhIndicator};
+      eq.relaxed_row = nlp_.addRelaxedRows(1, options_.filippov.equilibration_relaxation);
       nlp_.addFunctionTerm(makeAutoDiffFunction(static_cast<int>(eq.inputs.size()), 1, residual),
                            eq.inputs, -1, {{eq.relaxed_row, 1.0}});
       addStepRegularizer(nlp_, options_, nominal_step_, eq.inputs[0], eq.inputs[1]);

@@ -28,6 +28,30 @@ enum class PdsStepEquilibration {
   kBigM,
 };
 
+/// What only the PDS discretisation (PdsDiscretization) reads.
+struct PdsOptions {
+  PdsStepEquilibration step_equilibration = PdsStepEquilibration::kPolishing;
+  /// kBigM only: M of the bound |h_{n-1} - h_n| <= nu_n M, in units of h0. At a release
+  /// c leaves the boundary quadratically, so nu is only O(delta^2) when the element after it is
+  /// delta long, and M must exceed h0 / delta^2 for every delta the grid may need. With active-
+  /// set polishing (MpccSolver) nu is exactly 0 away from switches, so a large M costs no
+  /// equality there; in the relaxed NLPs the vanishing regulariser keeps the steps equal.
+  double equilibration_big_m = 1e9;
+};
+
+/// What only the Filippov (Stewart) discretisation reads.
+struct FilippovOptions {
+  StepEquilibration step_equilibration = StepEquilibration::kIndicator;
+  /// r of the relaxed step equilibration |((h_n - h_{n-1}) / h0) eta_n| <= r sigma. With r = 1
+  /// the relaxed NLPs of example (47) on coarse grids, whose switch starts inside an element,
+  /// could not move their steps and ended infeasible; with r = 1e3 some simulation steps of OCP
+  /// (61)'s controls that leave a sliding mode did. So the relaxed NLPs are guided by the step
+  /// regulariser (DiscretizationOptions::step_regularization), like the PDS's big M, and
+  /// polishing imposes eq. 31 exactly (h_{n-1} = h_n wherever eta_n cannot vanish).
+  double equilibration_relaxation = 1e6;
+};
+
+/// Options of both discretisations; the nested structs hold what only one of them reads.
 struct DiscretizationOptions {
   CollocationFamily family = CollocationFamily::kRadauIIA;
   int num_stages = 2;
@@ -35,26 +59,13 @@ struct DiscretizationOptions {
   bool switch_detection = true;  ///< FESD; false gives the standard fixed-step method
   CrossComplementarity cross_complementarity = CrossComplementarity::kElementSums;
   double step_bound = 1.0;  ///< gamma_h: (1 - gamma_h) h0 <= h_n <= (1 + gamma_h) h0
-  PdsStepEquilibration pds_step_equilibration = PdsStepEquilibration::kPolishing;
-  /// kBigM only: M of the bound |h_{n-1} - h_n| <= nu_n M, in units of h0. At a release
-  /// c leaves the boundary quadratically, so nu is only O(delta^2) when the element after it is
-  /// delta long, and M must exceed h0 / delta^2 for every delta the grid may need. With active-
-  /// set polishing (MpccSolver) nu is exactly 0 away from switches, so a large M costs no
-  /// equality there; in the relaxed NLPs the vanishing regulariser keeps the steps equal.
-  double equilibration_big_m = 1e9;
+  PdsOptions pds;
+  FilippovOptions filippov;
   /// rho of the regulariser  rho * sigma * sum_n ((h_n - h_{n-1}) / h0)^2  within each control
   /// interval. The relaxed NLPs (sigma > 0) leave the steps partly free; this keeps their path
   /// away from collapsed elements. At sigma -> 0 it vanishes and only the exact step
   /// equilibration remains. 0 switches it off.
   double step_regularization = 1.0;
-  StepEquilibration filippov_step_equilibration = StepEquilibration::kIndicator;
-  /// r of the relaxed step equilibration |((h_n - h_{n-1}) / h0) eta_n| <= r sigma of a
-  /// Filippov system. With r = 1 the relaxed NLPs of example (47) on coarse grids, whose
-  /// switch starts inside an element, could not move their steps and ended infeasible; with
-  /// r = 1e3 some simulation steps of OCP (61)'s controls that leave a sliding mode did. So
-  /// the relaxed NLPs are guided by the step regulariser above, like the PDS's big M, and
-  /// polishing imposes eq. 31 exactly (h_{n-1} = h_n wherever eta_n cannot vanish).
-  double filippov_equilibration_relaxation = 1e6;
 };
 
 }  // namespace fesd

@@ -32,7 +32,7 @@ class DcsModel : public DynamicsModel {
   int controlSize() const override { return control_size_; }
   int constraintSize() const { return constraint_size_; }
   const std::string& name() const override { return name_; }
-  /// A FesdDiscretization.
+  /// A PdsDiscretization.
   std::unique_ptr<Discretization> discretize(const OcpDefinition& ocp,
                                              const DiscretizationOptions& options) const override;
 

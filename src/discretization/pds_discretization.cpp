@@ -1,4 +1,4 @@
-#include "fesd_trajopt/discretization/fesd_discretization.h"
+#include "fesd_trajopt/discretization/pds_discretization.h"
 
 #include "fesd_trajopt/function/quadratic_function.h"
 
@@ -15,15 +15,15 @@ constexpr double kInf = NlpAssembly::kInfinity;
 
 }  // namespace
 
-FesdDiscretization::FesdDiscretization(OcpDefinition ocp, DiscretizationOptions options)
+PdsDiscretization::PdsDiscretization(OcpDefinition ocp, DiscretizationOptions options)
     : ocp_(std::move(ocp)),
       model_(std::dynamic_pointer_cast<const DcsModel>(ocp_.model)),
       options_(options),
       tableau_(makeTableau(options.family, options.num_stages)) {
-  if (!model_) throw std::invalid_argument("FesdDiscretization: the model is not a DcsModel");
+  if (!model_) throw std::invalid_argument("PdsDiscretization: the model is not a DcsModel");
   validateOcp(ocp_, options_);
   if (ocp_.initial_state_lower.size()) {
-    throw std::invalid_argument("FesdDiscretization: a free initial state is not supported");
+    throw std::invalid_argument("PdsDiscretization: a free initial state is not supported");
   }
   nx_ = model_->stateSize();
   nu_ = model_->controlSize();
@@ -43,7 +43,7 @@ FesdDiscretization::FesdDiscretization(OcpDefinition ocp, DiscretizationOptions 
   nlp_.finalize();
 }
 
-void FesdDiscretization::buildVariables() {
+void PdsDiscretization::buildVariables() {
   const int ns = tableau_.stages;
   start_.x = nlp_.addVariables(nx_, 0.0, 0.0);
   // c(x_start) is data (x_start is fixed): set by setInitialState, without a sign bound, so that
@@ -83,11 +83,11 @@ void FesdDiscretization::buildVariables() {
   core_variables_ = nlp_.numVariables();
 }
 
-const FesdDiscretization::StagePoint& FesdDiscretization::previousPoint(int element) const {
+const PdsDiscretization::StagePoint& PdsDiscretization::previousPoint(int element) const {
   return element == 0 ? start_ : stages_[element - 1].back();
 }
 
-std::vector<int> FesdDiscretization::velocityInputs(int element, int stage) const {
+std::vector<int> PdsDiscretization::velocityInputs(int element, int stage) const {
   const StagePoint& point = stages_[element][stage];
   std::vector<int> inputs;
   for (int d = 0; d < nx_; ++d) inputs.push_back(point.x + d);
@@ -96,7 +96,7 @@ std::vector<int> FesdDiscretization::velocityInputs(int element, int stage) cons
   return inputs;
 }
 
-void FesdDiscretization::addLifting(const StagePoint& point) {
+void PdsDiscretization::addLifting(const StagePoint& point) {
   if (nc_ == 0) return;
   const int row = nlp_.addRows(nc_, 0.0, 0.0);
   for (int k = 0; k < nc_; ++k) nlp_.addLinear(row + k, point.s + k, 1.0);
@@ -105,7 +105,7 @@ void FesdDiscretization::addLifting(const StagePoint& point) {
   nlp_.addFunctionTerm(model_->constraints(), inputs, -1, {{row, -1.0}});
 }
 
-void FesdDiscretization::buildDynamics() {
+void PdsDiscretization::buildDynamics() {
   const int ns = tableau_.stages;
   for (int e = 0; e < numElements(); ++e) {
     const StagePoint& previous = previousPoint(e);
@@ -129,7 +129,7 @@ void FesdDiscretization::buildDynamics() {
   if (steps_free_) addIntervalLengthRows(nlp_, grid_, ocp_);
 }
 
-void FesdDiscretization::buildComplementarity() {
+void PdsDiscretization::buildComplementarity() {
   const int ns = tableau_.stages;
   for (int e = 0; e < numElements(); ++e) {
     for (int k = 0; k < nc_; ++k) {
@@ -177,7 +177,7 @@ void FesdDiscretization::buildComplementarity() {
   }
 }
 
-void FesdDiscretization::buildStepEquilibration() {
+void PdsDiscretization::buildStepEquilibration() {
   if (!steps_free_) return;
   // Sums over the points of an element's closure. The backward sums also take the element's start
   // point: with one Radau stage (the end point) the stage points alone carry no trace of a
@@ -211,7 +211,7 @@ void FesdDiscretization::buildStepEquilibration() {
       equilibration_.push_back(boundary);
     }
   }
-  if (options_.pds_step_equilibration == PdsStepEquilibration::kBigM) addBigMEquilibration();
+  if (options_.pds.step_equilibration == PdsStepEquilibration::kBigM) addBigMEquilibration();
   for (EquilibrationAuxiliaries& aux : equilibration_) {
     aux.equal_steps_row = nlp_.addRows(1, -kInf, kInf);
     nlp_.addLinear(aux.equal_steps_row,
@@ -220,10 +220,10 @@ void FesdDiscretization::buildStepEquilibration() {
   nlp_.setActiveSetHook([this](const double* x) { equilibrateActiveSet(x); });
 }
 
-void FesdDiscretization::addBigMEquilibration() {
+void PdsDiscretization::addBigMEquilibration() {
   auxiliary_variables_begin_ = nlp_.numVariables();
   auxiliary_rows_begin_ = nlp_.numConstraints();
-  const double big_m = options_.equilibration_big_m * nominal_step_;
+  const double big_m = options_.pds.equilibration_big_m * nominal_step_;
   auto add_row = [&](const LinearExpression& expression, double lower, double upper) {
     const int row = nlp_.addRows(1, lower, upper);
     nlp_.addLinear(row, expression);
@@ -288,7 +288,7 @@ void FesdDiscretization::addBigMEquilibration() {
   auxiliary_rows_end_ = nlp_.numConstraints();
 }
 
-void FesdDiscretization::equilibrateActiveSet(const double* x) {
+void PdsDiscretization::equilibrateActiveSet(const double* x) {
   // Frozen at values exactly consistent with the point (max, min, KKT multipliers in {0, 1}).
   std::vector<double> consistent(x, x + nlp_.numVariables());
   completeAuxiliaries(consistent);
@@ -319,7 +319,7 @@ void FesdDiscretization::equilibrateActiveSet(const double* x) {
   }
 }
 
-void FesdDiscretization::setInitialState(const Eigen::VectorXd& x0) {
+void PdsDiscretization::setInitialState(const Eigen::VectorXd& x0) {
   if (x0.size() != nx_) throw std::invalid_argument("initial state has the wrong size");
   ocp_.initial_state = x0;
   for (int d = 0; d < nx_; ++d) {
@@ -334,7 +334,7 @@ void FesdDiscretization::setInitialState(const Eigen::VectorXd& x0) {
   }
 }
 
-void FesdDiscretization::setInitialMultipliers(const Eigen::VectorXd& lambda0) {
+void PdsDiscretization::setInitialMultipliers(const Eigen::VectorXd& lambda0) {
   if (lambda0.size() != nc_) throw std::invalid_argument("initial multipliers have the wrong size");
   for (int k = 0; k < nc_; ++k) {
     const double value = std::max(lambda0(k), 0.0);
@@ -343,7 +343,7 @@ void FesdDiscretization::setInitialMultipliers(const Eigen::VectorXd& lambda0) {
   }
 }
 
-void FesdDiscretization::continueFrom(const Trajectory& previous, bool same_dynamics) {
+void PdsDiscretization::continueFrom(const Trajectory& previous, bool same_dynamics) {
   const Eigen::VectorXd lambda = previous.elements.back().stage_multipliers.rightCols(1);
   setInitialMultipliers(lambda);
   for (int k = 0; k < nc_; ++k) {
@@ -356,16 +356,16 @@ void FesdDiscretization::continueFrom(const Trajectory& previous, bool same_dyna
   }
 }
 
-void FesdDiscretization::fixControl(int interval, const Eigen::VectorXd& u) {
+void PdsDiscretization::fixControl(int interval, const Eigen::VectorXd& u) {
   if (u.size() != nu_) throw std::invalid_argument("control has the wrong size");
   fesd::fixControl(nlp_, grid_, interval, u);
 }
 
-void FesdDiscretization::freeControl(int interval) {
+void PdsDiscretization::freeControl(int interval) {
   fesd::freeControl(nlp_, grid_, ocp_, interval);
 }
 
-std::vector<double> FesdDiscretization::constantGuess(
+std::vector<double> PdsDiscretization::constantGuess(
     const std::vector<Eigen::VectorXd>& controls) const {
   std::vector<double> x = nlp_.initialGuess();  // holds the start point's data
   for (const auto& element : stages_) {
@@ -383,7 +383,7 @@ std::vector<double> FesdDiscretization::constantGuess(
   return x;
 }
 
-std::vector<double> FesdDiscretization::guessFrom(const TrajectoryGuess& guess) const {
+std::vector<double> PdsDiscretization::guessFrom(const TrajectoryGuess& guess) const {
   std::vector<double> x = nlp_.initialGuess();  // holds the start point's data
   guessGridPoints(nlp_, grid_, tableau_, nominal_step_, nx_, nu_, guess, x);
   for (int e = 0; e < numElements(); ++e) {
@@ -407,11 +407,11 @@ std::vector<double> FesdDiscretization::guessFrom(const TrajectoryGuess& guess) 
   return x;
 }
 
-std::vector<double> FesdDiscretization::adoptedGuess(const Discretization& other_discretization,
-                                                     const std::vector<double>& solution) const {
-  const auto* other_pointer = dynamic_cast<const FesdDiscretization*>(&other_discretization);
-  if (!other_pointer) throw std::invalid_argument("adoptedGuess: not a FesdDiscretization");
-  const FesdDiscretization& other = *other_pointer;
+std::vector<double> PdsDiscretization::adoptedGuess(const Discretization& other_discretization,
+                                                    const std::vector<double>& solution) const {
+  const auto* other_pointer = dynamic_cast<const PdsDiscretization*>(&other_discretization);
+  if (!other_pointer) throw std::invalid_argument("adoptedGuess: not a PdsDiscretization");
+  const PdsDiscretization& other = *other_pointer;
   if (other.core_variables_ != core_variables_ || other.numElements() != numElements() ||
       other.tableau_.stages != tableau_.stages ||
       static_cast<int>(solution.size()) != other.nlp_.numVariables()) {
@@ -423,7 +423,7 @@ std::vector<double> FesdDiscretization::adoptedGuess(const Discretization& other
   return x;
 }
 
-std::vector<double> FesdDiscretization::translatedGuess(
+std::vector<double> PdsDiscretization::translatedGuess(
     const std::vector<double>& previous_solution) const {
   if (static_cast<int>(previous_solution.size()) != nlp_.numVariables()) {
     throw std::invalid_argument("translatedGuess: solution of a differently sized problem");
@@ -448,7 +448,7 @@ std::vector<double> FesdDiscretization::translatedGuess(
   return x;
 }
 
-void FesdDiscretization::completeAuxiliaries(std::vector<double>& x) const {
+void PdsDiscretization::completeAuxiliaries(std::vector<double>& x) const {
   auto value = [&](const LinearExpression& expression) {
     double total = 0.0;
     for (const LinearTerm& t : expression) total += t.coefficient * x[t.variable];
@@ -475,9 +475,8 @@ void FesdDiscretization::completeAuxiliaries(std::vector<double>& x) const {
   }
 }
 
-Trajectory FesdDiscretization::extract(const double* x, double start_time,
-                                       double activity_tolerance,
-                                       double penetration_tolerance) const {
+Trajectory PdsDiscretization::extract(const double* x, double start_time, double activity_tolerance,
+                                      double penetration_tolerance) const {
   Trajectory trajectory = gridTrajectory(x, grid_, ocp_, start_.x, nc_, start_time);
   for (int e = 0; e < numElements(); ++e) {
     ElementValues& element = trajectory.elements[e];
@@ -497,7 +496,7 @@ Trajectory FesdDiscretization::extract(const double* x, double start_time,
   return trajectory;
 }
 
-std::vector<bool> FesdDiscretization::activeAt(const Eigen::VectorXd& x, double tolerance) const {
+std::vector<bool> PdsDiscretization::activeAt(const Eigen::VectorXd& x, double tolerance) const {
   Eigen::VectorXd c(nc_);
   model_->constraints()->evaluate(x.data(), c.data());
   std::vector<bool> active(nc_);
@@ -508,7 +507,7 @@ std::vector<bool> FesdDiscretization::activeAt(const Eigen::VectorXd& x, double 
 // Defined here, not with the model, so that models stay below the discretisation layer.
 std::unique_ptr<Discretization> DcsModel::discretize(const OcpDefinition& ocp,
                                                      const DiscretizationOptions& options) const {
-  return std::make_unique<FesdDiscretization>(ocp, options);
+  return std::make_unique<PdsDiscretization>(ocp, options);
 }
 
 }  // namespace fesd

@@ -22,12 +22,12 @@ namespace fesd {
 ///  - costs by the RK quadrature, control/state bounds, path and terminal constraints.
 /// The start state and the controls are NLP variables, fixed or bounded through their bounds,
 /// so one structure serves optimal control and simulation alike.
-class FesdDiscretization : public Discretization {
+class PdsDiscretization : public Discretization {
  public:
-  FesdDiscretization(OcpDefinition ocp, DiscretizationOptions options);
+  PdsDiscretization(OcpDefinition ocp, DiscretizationOptions options);
   // The NLP's active-set hook refers to this object: it stays where it was built.
-  FesdDiscretization(const FesdDiscretization&) = delete;
-  FesdDiscretization& operator=(const FesdDiscretization&) = delete;
+  PdsDiscretization(const PdsDiscretization&) = delete;
+  PdsDiscretization& operator=(const PdsDiscretization&) = delete;
 
   NlpAssembly& nlp() override { return nlp_; }
   const NlpAssembly& nlp() const override { return nlp_; }
