@@ -298,14 +298,9 @@ void PdsDiscretization::equilibrateActiveSet(const double* x) {
   for (int row = auxiliary_rows_begin_; row < auxiliary_rows_end_; ++row) {
     nlp_.setRowBounds(row, -kInf, kInf);
   }
-  // A fixed variable of (near) zero value: a side fixed by the active set, or zero data.
   auto nonzero = [&](const LinearExpression& sum) {
     for (const LinearTerm& t : sum) {
-      const double lower = nlp_.variableLower(t.variable);
-      if (lower != nlp_.variableUpper(t.variable) ||
-          std::fabs(lower) > NlpAssembly::kNegligibleFixedValue) {
-        return true;
-      }
+      if (!nlp_.fixedAtAboutZero(t.variable)) return true;
     }
     return false;
   };

@@ -257,12 +257,9 @@ void StewartDiscretization::buildStepEquilibration() {
 
 void StewartDiscretization::equilibrateActiveSet() {
   for (const Equilibration& eq : equilibration_) {
-    // A block component counts as zero when fixed at (near) zero, by the active set or as data.
     auto nonzero = [&](const std::vector<int>& positions, int mode) {
       for (int p : positions) {
-        const int variable = eq.inputs[2 + p * nf_ + mode];
-        const double lower = nlp_.variableLower(variable);
-        if (lower != nlp_.variableUpper(variable) || std::fabs(lower) > 1e-9) return true;
+        if (!nlp_.fixedAtAboutZero(eq.inputs[2 + p * nf_ + mode])) return true;
       }
       return false;
     };

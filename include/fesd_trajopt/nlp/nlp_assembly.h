@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <unordered_map>
@@ -77,6 +78,11 @@ class NlpAssembly : public RelaxedMpcc {
 
   double variableLower(int variable) const { return x_lower_[variable]; }
   double variableUpper(int variable) const { return x_upper_[variable]; }
+  /// Fixed (by the active set, or as data) at a value within kNegligibleFixedValue of zero.
+  bool fixedAtAboutZero(int variable) const {
+    return x_lower_[variable] == x_upper_[variable] &&
+           std::fabs(x_lower_[variable]) <= kNegligibleFixedValue;
+  }
   std::vector<double>& initialGuess() { return initial_; }
   const std::vector<double>& initialGuess() const { return initial_; }
   double relaxation() const { return sigma_; }
