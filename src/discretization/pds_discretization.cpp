@@ -29,7 +29,7 @@ PdsDiscretization::PdsDiscretization(OcpDefinition ocp, DiscretizationOptions op
   nu_ = model_->controlSize();
   nc_ = model_->constraintSize();
   if (!tableau_.lastStageIsEndPoint()) {
-    throw std::invalid_argument("FESD discretisation: scheme " + tableau_.name() +
+    throw std::invalid_argument("PdsDiscretization: scheme " + tableau_.name() +
                                 " has no stage at the element end (c_ns != 1); use Radau-IIA");
   }
   nominal_step_ = fesd::nominalStep(ocp_, options_);
