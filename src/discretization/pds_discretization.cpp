@@ -1,7 +1,5 @@
 #include "fesd_trajopt/discretization/pds_discretization.h"
 
-#include "fesd_trajopt/function/quadratic_function.h"
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -16,23 +14,17 @@ constexpr double kInf = NlpAssembly::kInfinity;
 }  // namespace
 
 PdsDiscretization::PdsDiscretization(OcpDefinition ocp, DiscretizationOptions options)
-    : ocp_(std::move(ocp)),
-      model_(std::dynamic_pointer_cast<const DcsModel>(ocp_.model)),
-      options_(options),
-      tableau_(makeTableau(options.family, options.num_stages)) {
+    : CollocationDiscretization(std::move(ocp), options),
+      model_(std::dynamic_pointer_cast<const DcsModel>(ocp_.model)) {
   if (!model_) throw std::invalid_argument("PdsDiscretization: the model is not a DcsModel");
-  validateOcp(ocp_, options_);
   if (ocp_.initial_state_lower.size()) {
     throw std::invalid_argument("PdsDiscretization: a free initial state is not supported");
   }
-  nx_ = model_->stateSize();
-  nu_ = model_->controlSize();
   nc_ = model_->constraintSize();
   if (!tableau_.lastStageIsEndPoint()) {
     throw std::invalid_argument("PdsDiscretization: scheme " + tableau_.name() +
                                 " has no stage at the element end (c_ns != 1); use Radau-IIA");
   }
-  nominal_step_ = fesd::nominalStep(ocp_, options_);
   // Without constraints nothing can switch: the steps stay fixed and no MPCC machinery is built.
   steps_free_ = options_.switch_detection && nc_ > 0;
   buildVariables();
@@ -44,8 +36,8 @@ PdsDiscretization::PdsDiscretization(OcpDefinition ocp, DiscretizationOptions op
 }
 
 void PdsDiscretization::buildVariables() {
-  const int ns = tableau_.stages;
-  start_.x = nlp_.addVariables(nx_, 0.0, 0.0);
+  addStartState();
+  start_.x = start_state_;
   // c(x_start) is data (x_start is fixed): set by setInitialState, without a sign bound, so that
   // a start a rounding error inside the boundary (the end of a previous step) stays feasible.
   start_.s = nlp_.addVariables(nc_, 0.0, 0.0);
@@ -54,46 +46,23 @@ void PdsDiscretization::buildVariables() {
   start_.lambda = nlp_.addVariables(nc_, 0.0, 0.0);
   carried_lambda_ = nlp_.addVariables(nc_, 0.0, 0.0);
   setInitialState(ocp_.initial_state);
-  const double step_lower =
-      steps_free_ ? (1.0 - options_.step_bound) * nominal_step_ : nominal_step_;
-  const double step_upper =
-      steps_free_ ? (1.0 + options_.step_bound) * nominal_step_ : nominal_step_;
-  grid_.elements_per_interval = options_.num_elements;
-  for (int k = 0; k < ocp_.num_intervals; ++k) {
-    grid_.controls.push_back(nlp_.addVariables(nu_, -kInf, kInf));
-    freeControl(k);
-    for (int n = 0; n < options_.num_elements; ++n) {
-      grid_.steps.push_back(nlp_.addVariables(1, step_lower, step_upper, nominal_step_));
-      std::vector<StagePoint> points(ns);
-      for (StagePoint& point : points) {
-        point.x = nlp_.addVariables(nx_, -kInf, kInf);
-        for (int d = 0; d < nx_; ++d) {
-          nlp_.setVariableBounds(point.x + d, ocp_.state_lower.size() ? ocp_.state_lower(d) : -kInf,
-                                 ocp_.state_upper.size() ? ocp_.state_upper(d) : kInf);
-        }
-        point.s = nlp_.addVariables(nc_, 0.0, kInf);
-        point.lambda = nlp_.addVariables(nc_, 0.0, kInf);
-      }
-      stages_.push_back(points);
-      grid_.stage_states.emplace_back();
-      for (const StagePoint& point : points) grid_.stage_states.back().push_back(point.x);
-      grid_.end_states.push_back(points.back().x);
+  buildGrid([&](int) {
+    std::vector<StagePoint> points(tableau_.stages);
+    ElementStates states;
+    for (StagePoint& point : points) {
+      point.x = addStateVariables();
+      point.s = nlp_.addVariables(nc_, 0.0, kInf);
+      point.lambda = nlp_.addVariables(nc_, 0.0, kInf);
+      states.stages.push_back(point.x);
     }
-  }
-  core_variables_ = nlp_.numVariables();
+    states.end = points.back().x;
+    stages_.push_back(points);
+    return states;
+  });
 }
 
 const PdsDiscretization::StagePoint& PdsDiscretization::previousPoint(int element) const {
   return element == 0 ? start_ : stages_[element - 1].back();
-}
-
-std::vector<int> PdsDiscretization::velocityInputs(int element, int stage) const {
-  const StagePoint& point = stages_[element][stage];
-  std::vector<int> inputs;
-  for (int d = 0; d < nx_; ++d) inputs.push_back(point.x + d);
-  for (int d = 0; d < nu_; ++d) inputs.push_back(grid_.controlOf(element) + d);
-  for (int d = 0; d < nc_; ++d) inputs.push_back(point.lambda + d);
-  return inputs;
 }
 
 void PdsDiscretization::addLifting(const StagePoint& point) {
@@ -106,24 +75,10 @@ void PdsDiscretization::addLifting(const StagePoint& point) {
 }
 
 void PdsDiscretization::buildDynamics() {
-  const int ns = tableau_.stages;
   for (int e = 0; e < numElements(); ++e) {
-    const StagePoint& previous = previousPoint(e);
-    // x_{n,i} - x_{n,0} - h_n sum_j a_ij v(x_{n,j}, u, lambda_{n,j}) = 0
-    const int first_row = nlp_.addRows(ns * nx_, 0.0, 0.0);
-    for (int i = 0; i < ns; ++i) {
-      for (int d = 0; d < nx_; ++d) {
-        nlp_.addLinear(first_row + i * nx_ + d, stages_[e][i].x + d, 1.0);
-        nlp_.addLinear(first_row + i * nx_ + d, previous.x + d, -1.0);
-      }
-    }
-    for (int j = 0; j < ns; ++j) {
-      std::vector<NlpAssembly::Target> targets;
-      for (int i = 0; i < ns; ++i) {
-        if (tableau_.a(i, j) != 0.0) targets.push_back({first_row + i * nx_, -tableau_.a(i, j)});
-      }
-      nlp_.addFunctionTerm(model_->velocity(), velocityInputs(e, j), grid_.steps[e], targets);
-    }
+    std::vector<int> multipliers;
+    for (const StagePoint& point : stages_[e]) multipliers.push_back(point.lambda);
+    addRungeKuttaRows(e, model_->velocity(), multipliers, nc_);
     for (const StagePoint& point : stages_[e]) addLifting(point);
   }
   if (steps_free_) addIntervalLengthRows(nlp_, grid_, ocp_);
@@ -197,25 +152,20 @@ void PdsDiscretization::buildStepEquilibration() {
   };
   auxiliary_variables_begin_ = auxiliary_variables_end_ = nlp_.numVariables();
   auxiliary_rows_begin_ = auxiliary_rows_end_ = nlp_.numConstraints();
-  for (int k_interval = 0; k_interval < ocp_.num_intervals; ++k_interval) {
-    for (int n = 1; n < options_.num_elements; ++n) {
-      const int element = k_interval * options_.num_elements + n;
-      EquilibrationAuxiliaries boundary{element - 1, element, {}, {}, {}, {}, {}, {}, {}, -1, -1};
-      for (int k = 0; k < nc_; ++k) {
-        boundary.sums.push_back(
-            {closure_sum(element - 1, k, true, true), closure_sum(element, k, true, false),
-             closure_sum(element - 1, k, false, true), closure_sum(element, k, false, false)});
-      }
-      addStepRegularizer(nlp_, options_, nominal_step_, grid_.steps[element - 1],
-                         grid_.steps[element]);
-      equilibration_.push_back(boundary);
+  for (int element : innerBoundaries()) {
+    EquilibrationAuxiliaries boundary{element - 1, element, {}, {}, {}, {}, {}, {}, {}, -1, -1};
+    for (int k = 0; k < nc_; ++k) {
+      boundary.sums.push_back(
+          {closure_sum(element - 1, k, true, true), closure_sum(element, k, true, false),
+           closure_sum(element - 1, k, false, true), closure_sum(element, k, false, false)});
     }
+    addStepRegularizer(nlp_, options_, nominal_step_, grid_.steps[element - 1],
+                       grid_.steps[element]);
+    equilibration_.push_back(boundary);
   }
   if (options_.pds.step_equilibration == PdsStepEquilibration::kBigM) addBigMEquilibration();
   for (EquilibrationAuxiliaries& aux : equilibration_) {
-    aux.equal_steps_row = nlp_.addRows(1, -kInf, kInf);
-    nlp_.addLinear(aux.equal_steps_row,
-                   {{grid_.steps[aux.previous_element], 1.0}, {grid_.steps[aux.element], -1.0}});
+    aux.equal_steps_row = addEqualStepsRow(aux.element);
   }
   nlp_.setActiveSetHook([this](const double* x) { equilibrateActiveSet(x); });
 }
@@ -291,7 +241,7 @@ void PdsDiscretization::addBigMEquilibration() {
 void PdsDiscretization::equilibrateActiveSet(const double* x) {
   // Frozen at values exactly consistent with the point (max, min, KKT multipliers in {0, 1}).
   std::vector<double> consistent(x, x + nlp_.numVariables());
-  completeAuxiliaries(consistent);
+  completeDependentVariables(consistent);
   for (int v = auxiliary_variables_begin_; v < auxiliary_variables_end_; ++v) {
     nlp_.setVariableBounds(v, consistent[v], consistent[v]);
   }
@@ -315,12 +265,7 @@ void PdsDiscretization::equilibrateActiveSet(const double* x) {
 }
 
 void PdsDiscretization::setInitialState(const Eigen::VectorXd& x0) {
-  if (x0.size() != nx_) throw std::invalid_argument("initial state has the wrong size");
-  ocp_.initial_state = x0;
-  for (int d = 0; d < nx_; ++d) {
-    nlp_.setVariableBounds(start_.x + d, x0(d), x0(d));
-    nlp_.initialGuess()[start_.x + d] = x0(d);
-  }
+  fixStartState(x0);
   Eigen::VectorXd c0(nc_);
   model_->constraints()->evaluate(x0.data(), c0.data());
   for (int k = 0; k < nc_; ++k) {
@@ -351,15 +296,6 @@ void PdsDiscretization::continueFrom(const Trajectory& previous, bool same_dynam
   }
 }
 
-void PdsDiscretization::fixControl(int interval, const Eigen::VectorXd& u) {
-  if (u.size() != nu_) throw std::invalid_argument("control has the wrong size");
-  fesd::fixControl(nlp_, grid_, interval, u);
-}
-
-void PdsDiscretization::freeControl(int interval) {
-  fesd::freeControl(nlp_, grid_, ocp_, interval);
-}
-
 std::vector<double> PdsDiscretization::constantGuess(
     const std::vector<Eigen::VectorXd>& controls) const {
   std::vector<double> x = nlp_.initialGuess();  // holds the start point's data
@@ -374,7 +310,7 @@ std::vector<double> PdsDiscretization::constantGuess(
   }
   for (int e = 0; e < numElements(); ++e) x[grid_.steps[e]] = nominal_step_;
   guessControls(nlp_, grid_, nu_, controls, x);
-  completeAuxiliaries(x);
+  completeDependentVariables(x);
   return x;
 }
 
@@ -398,31 +334,13 @@ std::vector<double> PdsDiscretization::guessFrom(const TrajectoryGuess& guess) c
       }
     }
   }
-  completeAuxiliaries(x);
-  return x;
-}
-
-std::vector<double> PdsDiscretization::adoptedGuess(const Discretization& other_discretization,
-                                                    const std::vector<double>& solution) const {
-  const auto* other_pointer = dynamic_cast<const PdsDiscretization*>(&other_discretization);
-  if (!other_pointer) throw std::invalid_argument("adoptedGuess: not a PdsDiscretization");
-  const PdsDiscretization& other = *other_pointer;
-  if (other.core_variables_ != core_variables_ || other.numElements() != numElements() ||
-      other.tableau_.stages != tableau_.stages ||
-      static_cast<int>(solution.size()) != other.nlp_.numVariables()) {
-    throw std::invalid_argument("adoptedGuess: the discretisations' grids differ");
-  }
-  std::vector<double> x = constantGuess();
-  std::copy(solution.begin(), solution.begin() + core_variables_, x.begin());
-  completeAuxiliaries(x);
+  completeDependentVariables(x);
   return x;
 }
 
 std::vector<double> PdsDiscretization::translatedGuess(
     const std::vector<double>& previous_solution) const {
-  if (static_cast<int>(previous_solution.size()) != nlp_.numVariables()) {
-    throw std::invalid_argument("translatedGuess: solution of a differently sized problem");
-  }
+  requireOwnSize(previous_solution, "translatedGuess");
   std::vector<double> x = previous_solution;
   const Eigen::VectorXd shift =
       ocp_.initial_state - Eigen::Map<const Eigen::VectorXd>(x.data() + start_.x, nx_);
@@ -439,11 +357,11 @@ std::vector<double> PdsDiscretization::translatedGuess(
     x[start_.s + k] = nlp_.initialGuess()[start_.s + k];
     x[start_.lambda + k] = nlp_.initialGuess()[start_.lambda + k];
   }
-  completeAuxiliaries(x);
+  completeDependentVariables(x);
   return x;
 }
 
-void PdsDiscretization::completeAuxiliaries(std::vector<double>& x) const {
+void PdsDiscretization::completeDependentVariables(std::vector<double>& x) const {
   auto value = [&](const LinearExpression& expression) {
     double total = 0.0;
     for (const LinearTerm& t : expression) total += t.coefficient * x[t.variable];
@@ -470,9 +388,7 @@ void PdsDiscretization::completeAuxiliaries(std::vector<double>& x) const {
   }
 }
 
-Trajectory PdsDiscretization::extract(const double* x, double start_time, double activity_tolerance,
-                                      double penetration_tolerance) const {
-  Trajectory trajectory = gridTrajectory(x, grid_, ocp_, start_.x, nc_, start_time);
+void PdsDiscretization::readPairValues(const double* x, Trajectory& trajectory) const {
   for (int e = 0; e < numElements(); ++e) {
     ElementValues& element = trajectory.elements[e];
     for (int j = 0; j < tableau_.stages; ++j) {
@@ -485,10 +401,13 @@ Trajectory PdsDiscretization::extract(const double* x, double start_time, double
           *model_->constraints(), tableau_.c, trajectory.states[e], element.stage_states);
     }
   }
-  std::vector<bool> initially_active(nc_);
-  for (int k = 0; k < nc_; ++k) initially_active[k] = x[start_.s + k] <= activity_tolerance;
-  classifySwitches(trajectory, initially_active, activity_tolerance, penetration_tolerance);
-  return trajectory;
+}
+
+std::vector<bool> PdsDiscretization::activeAtStart(const double* x, const Trajectory&,
+                                                   double tolerance) const {
+  std::vector<bool> active(nc_);
+  for (int k = 0; k < nc_; ++k) active[k] = x[start_.s + k] <= tolerance;
+  return active;
 }
 
 std::vector<bool> PdsDiscretization::activeAt(const Eigen::VectorXd& x, double tolerance) const {

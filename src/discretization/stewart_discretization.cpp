@@ -29,17 +29,11 @@ struct EquilibrationResidual {
 }  // namespace
 
 StewartDiscretization::StewartDiscretization(OcpDefinition ocp, DiscretizationOptions options)
-    : ocp_(std::move(ocp)),
-      model_(std::dynamic_pointer_cast<const StewartModel>(ocp_.model)),
-      options_(options),
-      tableau_(makeTableau(options.family, options.num_stages)) {
+    : CollocationDiscretization(std::move(ocp), options),
+      model_(std::dynamic_pointer_cast<const StewartModel>(ocp_.model)) {
   if (!model_) throw std::invalid_argument("StewartDiscretization: the model is no StewartModel");
-  validateOcp(ocp_, options_);
-  nx_ = model_->stateSize();
-  nu_ = model_->controlSize();
   nf_ = model_->numModes();
   nsys_ = model_->numSubsystems();
-  nominal_step_ = fesd::nominalStep(ocp_, options_);
   steps_free_ = options_.switch_detection;
   stage_at_end_ = tableau_.lastStageIsEndPoint();
   buildVariables();
@@ -52,49 +46,31 @@ StewartDiscretization::StewartDiscretization(OcpDefinition ocp, DiscretizationOp
 }
 
 void StewartDiscretization::buildVariables() {
-  start_state_ = nlp_.addVariables(nx_, -kInf, kInf);
+  addStartState();
   if (ocp_.initial_state_lower.size()) {
     releaseInitialState();
     for (int d = 0; d < nx_; ++d) nlp_.initialGuess()[start_state_ + d] = ocp_.initial_state(d);
   } else {
     setInitialState(ocp_.initial_state);
   }
-  const double step_lower =
-      steps_free_ ? (1.0 - options_.step_bound) * nominal_step_ : nominal_step_;
-  const double step_upper =
-      steps_free_ ? (1.0 + options_.step_bound) * nominal_step_ : nominal_step_;
-  auto add_state = [&] {
-    const int x = nlp_.addVariables(nx_, -kInf, kInf);
-    for (int d = 0; d < nx_; ++d) {
-      nlp_.setVariableBounds(x + d, ocp_.state_lower.size() ? ocp_.state_lower(d) : -kInf,
-                             ocp_.state_upper.size() ? ocp_.state_upper(d) : kInf);
+  buildGrid([&](int) {
+    Element element;
+    element.start_state = elements_.empty() ? start_state_ : elements_.back().end_state;
+    ElementStates states;
+    for (int j = 0; j < tableau_.stages; ++j) {
+      StagePoint point;
+      point.x = addStateVariables();
+      point.theta = nlp_.addVariables(nf_, 0.0, kInf);
+      point.lambda = nlp_.addVariables(nf_, 0.0, kInf);
+      point.mu = nlp_.addVariables(nsys_, -kInf, kInf);
+      element.stages.push_back(point);
+      states.stages.push_back(point.x);
     }
-    return x;
-  };
-  grid_.elements_per_interval = options_.num_elements;
-  for (int k = 0; k < ocp_.num_intervals; ++k) {
-    grid_.controls.push_back(nlp_.addVariables(nu_, -kInf, kInf));
-    fesd::freeControl(nlp_, grid_, ocp_, k);
-    for (int n = 0; n < options_.num_elements; ++n) {
-      grid_.steps.push_back(nlp_.addVariables(1, step_lower, step_upper, nominal_step_));
-      Element element;
-      element.start_state = elements_.empty() ? start_state_ : elements_.back().end_state;
-      for (int j = 0; j < tableau_.stages; ++j) {
-        StagePoint point;
-        point.x = add_state();
-        point.theta = nlp_.addVariables(nf_, 0.0, kInf);
-        point.lambda = nlp_.addVariables(nf_, 0.0, kInf);
-        point.mu = nlp_.addVariables(nsys_, -kInf, kInf);
-        element.stages.push_back(point);
-      }
-      element.end_state = stage_at_end_ ? element.stages.back().x : add_state();
-      grid_.stage_states.emplace_back();
-      for (const StagePoint& point : element.stages) grid_.stage_states.back().push_back(point.x);
-      grid_.end_states.push_back(element.end_state);
-      elements_.push_back(element);
-    }
-  }
-  core_variables_ = nlp_.numVariables();
+    element.end_state = stage_at_end_ ? element.stages.back().x : addStateVariables();
+    states.end = element.end_state;
+    elements_.push_back(element);
+    return states;
+  });
 }
 
 void StewartDiscretization::buildAlgebraicRows(int state, int theta, int lambda, int mu,
@@ -115,31 +91,11 @@ void StewartDiscretization::buildAlgebraicRows(int state, int theta, int lambda,
 }
 
 void StewartDiscretization::buildDynamics() {
-  const int ns = tableau_.stages;
   for (int e = 0; e < numElements(); ++e) {
     const Element& element = elements_[e];
-    // x_{n,i} - x_{n,0} - h_n sum_j a_ij v_j = 0, and for c_ns != 1 the end state with b_j
-    const int first_row = nlp_.addRows(ns * nx_, 0.0, 0.0);
-    const int end_row = stage_at_end_ ? -1 : nlp_.addRows(nx_, 0.0, 0.0);
-    auto add_state_difference = [&](int row, int state) {
-      for (int d = 0; d < nx_; ++d) {
-        nlp_.addLinear(row + d, state + d, 1.0);
-        nlp_.addLinear(row + d, element.start_state + d, -1.0);
-      }
-    };
-    for (int i = 0; i < ns; ++i) add_state_difference(first_row + i * nx_, element.stages[i].x);
-    if (end_row >= 0) add_state_difference(end_row, element.end_state);
-    for (int j = 0; j < ns; ++j) {
-      std::vector<NlpAssembly::Target> targets;
-      for (int i = 0; i < ns; ++i) {
-        if (tableau_.a(i, j) != 0.0) targets.push_back({first_row + i * nx_, -tableau_.a(i, j)});
-      }
-      if (end_row >= 0) targets.push_back({end_row, -tableau_.b(j)});
-      const StagePoint& point = element.stages[j];
-      std::vector<int> inputs = stateControlInputs(grid_, point.x, e, nx_, nu_);
-      for (int i = 0; i < nf_; ++i) inputs.push_back(point.theta + i);
-      nlp_.addFunctionTerm(model_->velocity(), inputs, grid_.steps[e], targets);
-    }
+    std::vector<int> modes;
+    for (const StagePoint& point : element.stages) modes.push_back(point.theta);
+    addRungeKuttaRows(e, model_->velocity(), modes, nf_);
     for (const StagePoint& point : element.stages) {
       buildAlgebraicRows(point.x, point.theta, point.lambda, point.mu, true);
     }
@@ -212,46 +168,40 @@ void StewartDiscretization::buildComplementarity() {
 
 void StewartDiscretization::buildStepEquilibration() {
   if (!steps_free_ || options_.filippov.step_equilibration == StepEquilibration::kNone) return;
-  for (int k = 0; k < ocp_.num_intervals; ++k) {
-    for (int n = 1; n < options_.num_elements; ++n) {
-      const int element = k * options_.num_elements + n;
-      Equilibration eq;
-      eq.inputs = {grid_.steps[element - 1], grid_.steps[element]};
-      std::vector<int> blocks;  // first variable of each n_f block, in input order
-      auto positions = [&](const std::vector<int>& block_starts) {
-        std::vector<int> result;
-        for (int start : block_starts) {
-          auto found = std::find(blocks.begin(), blocks.end(), start);
-          result.push_back(static_cast<int>(found - blocks.begin()));
-          if (found == blocks.end()) blocks.push_back(start);
-        }
-        return result;
-      };
-      auto stage_thetas = [&](int e) {
-        std::vector<int> thetas;
-        for (const StagePoint& point : elements_[e].stages) thetas.push_back(point.theta);
-        return thetas;
-      };
-      eq.indicator = {nf_, positions(closureLambdas(element - 1)),
-                      positions(closureLambdas(element)), positions(stage_thetas(element - 1)),
-                      positions(stage_thetas(element))};
-      for (int start : blocks) {
-        for (int i = 0; i < nf_; ++i) eq.inputs.push_back(start + i);
+  for (int element : innerBoundaries()) {
+    Equilibration eq;
+    eq.element = element;
+    eq.inputs = {grid_.steps[element - 1], grid_.steps[element]};
+    std::vector<int> blocks;  // first variable of each n_f block, in input order
+    auto positions = [&](const std::vector<int>& block_starts) {
+      std::vector<int> result;
+      for (int start : block_starts) {
+        auto found = std::find(blocks.begin(), blocks.end(), start);
+        result.push_back(static_cast<int>(found - blocks.begin()));
+        if (found == blocks.end()) blocks.push_back(start);
       }
-      const EquilibrationResidual residual{
-          eq.indicator, nominal_step_,
-          options_.filippov.step_equilibration == StepEquilibration::kTanhIndicator};
-      eq.relaxed_row = nlp_.addRelaxedRows(1, options_.filippov.equilibration_relaxation);
-      nlp_.addFunctionTerm(makeAutoDiffFunction(static_cast<int>(eq.inputs.size()), 1, residual),
-                           eq.inputs, -1, {{eq.relaxed_row, 1.0}});
-      addStepRegularizer(nlp_, options_, nominal_step_, eq.inputs[0], eq.inputs[1]);
-      equilibration_.push_back(eq);
+      return result;
+    };
+    auto stage_thetas = [&](int e) {
+      std::vector<int> thetas;
+      for (const StagePoint& point : elements_[e].stages) thetas.push_back(point.theta);
+      return thetas;
+    };
+    eq.indicator = {nf_, positions(closureLambdas(element - 1)), positions(closureLambdas(element)),
+                    positions(stage_thetas(element - 1)), positions(stage_thetas(element))};
+    for (int start : blocks) {
+      for (int i = 0; i < nf_; ++i) eq.inputs.push_back(start + i);
     }
+    const EquilibrationResidual residual{
+        eq.indicator, nominal_step_,
+        options_.filippov.step_equilibration == StepEquilibration::kTanhIndicator};
+    eq.relaxed_row = nlp_.addRelaxedRows(1, options_.filippov.equilibration_relaxation);
+    nlp_.addFunctionTerm(makeAutoDiffFunction(static_cast<int>(eq.inputs.size()), 1, residual),
+                         eq.inputs, -1, {{eq.relaxed_row, 1.0}});
+    addStepRegularizer(nlp_, options_, nominal_step_, eq.inputs[0], eq.inputs[1]);
+    equilibration_.push_back(eq);
   }
-  for (Equilibration& eq : equilibration_) {
-    eq.equal_steps_row = nlp_.addRows(1, -kInf, kInf);
-    nlp_.addLinear(eq.equal_steps_row, {{eq.inputs[0], 1.0}, {eq.inputs[1], -1.0}});
-  }
+  for (Equilibration& eq : equilibration_) eq.equal_steps_row = addEqualStepsRow(eq.element);
   nlp_.setActiveSetHook([this](const double*) { equilibrateActiveSet(); });
 }
 
@@ -285,12 +235,7 @@ std::vector<double> StewartDiscretization::switchIndicators(const double* x) con
 }
 
 void StewartDiscretization::setInitialState(const Eigen::VectorXd& x0) {
-  if (x0.size() != nx_) throw std::invalid_argument("initial state has the wrong size");
-  ocp_.initial_state = x0;
-  for (int d = 0; d < nx_; ++d) {
-    nlp_.setVariableBounds(start_state_ + d, x0(d), x0(d));
-    nlp_.initialGuess()[start_state_ + d] = x0(d);
-  }
+  fixStartState(x0);
 }
 
 void StewartDiscretization::releaseInitialState() {
@@ -303,17 +248,12 @@ void StewartDiscretization::releaseInitialState() {
   }
 }
 
-void StewartDiscretization::fixControl(int interval, const Eigen::VectorXd& u) {
-  if (u.size() != nu_) throw std::invalid_argument("control has the wrong size");
-  fesd::fixControl(nlp_, grid_, interval, u);
-}
-
 void StewartDiscretization::setLpMultipliers(std::vector<double>& x, int state, int lambda,
                                              int mu) const {
   model_->lpMultipliers(x.data() + state, x.data() + lambda, x.data() + mu);
 }
 
-void StewartDiscretization::completeBoundaryPoints(std::vector<double>& x) const {
+void StewartDiscretization::completeDependentVariables(std::vector<double>& x) const {
   if (!steps_free_) return;
   for (int e = 0; e < numElements(); ++e) {
     if (e > 0 && stage_at_end_) continue;  // a stage point, not a boundary point of its own
@@ -349,7 +289,7 @@ std::vector<double> StewartDiscretization::constantGuess(
     x[grid_.steps[e]] = nominal_step_;
   }
   guessControls(nlp_, grid_, nu_, controls, x);
-  completeBoundaryPoints(x);
+  completeDependentVariables(x);
   return x;
 }
 
@@ -359,15 +299,13 @@ std::vector<double> StewartDiscretization::guessFrom(const TrajectoryGuess& gues
   for (const Element& element : elements_) {
     for (const StagePoint& point : element.stages) setModeOfState(x, point);
   }
-  completeBoundaryPoints(x);
+  completeDependentVariables(x);
   return x;
 }
 
 std::vector<double> StewartDiscretization::translatedGuess(
     const std::vector<double>& previous_solution) const {
-  if (static_cast<int>(previous_solution.size()) != nlp_.numVariables()) {
-    throw std::invalid_argument("translatedGuess: solution of a differently sized problem");
-  }
+  requireOwnSize(previous_solution, "translatedGuess");
   // The states move with the start; the modes are those of the moved states and the grid is
   // uniform again: a switch inside the previous step says nothing about this one's.
   std::vector<double> x = previous_solution;
@@ -384,28 +322,11 @@ std::vector<double> StewartDiscretization::translatedGuess(
     if (!stage_at_end_) Eigen::Map<Eigen::VectorXd>(x.data() + element.end_state, nx_) += shift;
     x[grid_.steps[e]] = nominal_step_;
   }
-  completeBoundaryPoints(x);
+  completeDependentVariables(x);
   return x;
 }
 
-std::vector<double> StewartDiscretization::adoptedGuess(const Discretization& other_discretization,
-                                                        const std::vector<double>& solution) const {
-  const auto* other = dynamic_cast<const StewartDiscretization*>(&other_discretization);
-  if (!other || other->core_variables_ != core_variables_ ||
-      other->numElements() != numElements() || other->tableau_.stages != tableau_.stages ||
-      static_cast<int>(solution.size()) != other->nlp_.numVariables()) {
-    throw std::invalid_argument("adoptedGuess: the discretisations' grids differ");
-  }
-  std::vector<double> x = constantGuess();
-  std::copy(solution.begin(), solution.begin() + core_variables_, x.begin());
-  completeBoundaryPoints(x);
-  return x;
-}
-
-Trajectory StewartDiscretization::extract(const double* x, double start_time,
-                                          double activity_tolerance,
-                                          double penetration_tolerance) const {
-  Trajectory trajectory = gridTrajectory(x, grid_, ocp_, start_state_, nf_, start_time);
+void StewartDiscretization::readPairValues(const double* x, Trajectory& trajectory) const {
   for (int e = 0; e < numElements(); ++e) {
     ElementValues& values = trajectory.elements[e];
     for (int j = 0; j < tableau_.stages; ++j) {
@@ -414,9 +335,11 @@ Trajectory StewartDiscretization::extract(const double* x, double start_time,
       values.stage_constraints.col(j) = Eigen::Map<const Eigen::VectorXd>(x + point.lambda, nf_);
     }
   }
-  classifySwitches(trajectory, activeAt(trajectory.states.front(), activity_tolerance),
-                   activity_tolerance, penetration_tolerance);
-  return trajectory;
+}
+
+std::vector<bool> StewartDiscretization::activeAtStart(const double*, const Trajectory& trajectory,
+                                                       double tolerance) const {
+  return activeAt(trajectory.states.front(), tolerance);
 }
 
 std::vector<bool> StewartDiscretization::activeAt(const Eigen::VectorXd& x,

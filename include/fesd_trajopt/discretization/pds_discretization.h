@@ -2,9 +2,7 @@
 
 #include <vector>
 
-#include "fesd_trajopt/discretization/butcher_tableau.h"
-#include "fesd_trajopt/discretization/collocation_grid.h"
-#include "fesd_trajopt/discretization/discretization.h"
+#include "fesd_trajopt/discretization/collocation_discretization.h"
 #include "fesd_trajopt/model/dcs_model.h"
 
 namespace fesd {
@@ -22,22 +20,9 @@ namespace fesd {
 ///  - costs by the RK quadrature, control/state bounds, path and terminal constraints.
 /// The start state and the controls are NLP variables, fixed or bounded through their bounds,
 /// so one structure serves optimal control and simulation alike.
-class PdsDiscretization : public Discretization {
+class PdsDiscretization : public CollocationDiscretization {
  public:
   PdsDiscretization(OcpDefinition ocp, DiscretizationOptions options);
-  // The NLP's active-set hook refers to this object: it stays where it was built.
-  PdsDiscretization(const PdsDiscretization&) = delete;
-  PdsDiscretization& operator=(const PdsDiscretization&) = delete;
-
-  NlpAssembly& nlp() override { return nlp_; }
-  const NlpAssembly& nlp() const override { return nlp_; }
-  const OcpDefinition& ocp() const { return ocp_; }
-  const DiscretizationOptions& options() const { return options_; }
-  const ButcherTableau& tableau() const { return tableau_; }
-  /// True when element lengths are free (FESD on and the model has constraints).
-  bool stepsAreFree() const override { return steps_free_; }
-  int numElements() const { return static_cast<int>(stages_.size()); }  ///< all intervals
-  double nominalStep() const { return nominal_step_; }
 
   /// Fixes the start state (bounds and guess) and updates its lifted constraint values.
   void setInitialState(const Eigen::VectorXd& x0) override;
@@ -51,10 +36,6 @@ class PdsDiscretization : public Discretization {
   /// release one of them at the step's start, early (measured: 2e-3 early, state error 4e-6,
   /// not flagged, on a random push scene), instead of failing the step.
   void continueFrom(const Trajectory& previous, bool same_dynamics) override;
-  /// Fixes the control of interval k to u (simulation).
-  void fixControl(int interval, const Eigen::VectorXd& u) override;
-  /// Frees the control of interval k within the OCP's control bounds.
-  void freeControl(int interval);
 
   /// A guess with every state at the start state, lambda = 0, nominal steps and the given
   /// controls (clipped to their bounds; empty means 0); auxiliaries made consistent.
@@ -67,26 +48,9 @@ class PdsDiscretization : public Discretization {
   /// every stage state shifted by (start - old start), c(x) re-evaluated, lambda and steps kept.
   /// A simulation step's guess from the step before (smooth motion repeats its increments).
   std::vector<double> translatedGuess(const std::vector<double>& previous_solution) const override;
-  /// A solution of a discretisation of the same OCP with the same grid sizes (e.g. the
-  /// standard method's) as a guess for this one: shared variables copied, auxiliaries completed.
-  std::vector<double> adoptedGuess(const Discretization& other,
-                                   const std::vector<double>& solution) const override;
-  /// Sets the step-equilibration auxiliaries (pi, max, nu, OR) of x consistently with its
-  /// s and lambda values, so a guess starts (nearly) feasible for them.
-  void completeAuxiliaries(std::vector<double>& x) const;
 
-  /// Reads the trajectory (times, states, stage values, controls, switches) from a solution;
-  /// times start at start_time.
-  Trajectory extract(const double* x, double start_time = 0.0,
-                     double activity_tolerance = kDefaultActivityTolerance,
-                     double penetration_tolerance = kDefaultPenetrationTolerance) const override;
   /// c_k(x) <= tolerance.
   std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const override;
-
-  int controlIndex(int interval) const { return grid_.controls[interval]; }
-  int stepIndex(int element) const { return grid_.steps[element]; }
-  int stateIndex(int element, int stage) const { return stages_[element][stage].x; }
-  int startStateIndex() const { return start_.x; }
 
  private:
   struct StagePoint {
@@ -118,24 +82,25 @@ class PdsDiscretization : public Discretization {
   /// auxiliaries' inequalities would pin them without interior, so they are frozen.
   void equilibrateActiveSet(const double* x);
   void addLifting(const StagePoint& point);
+  /// The point before an element's stages: the start or the previous element's last stage.
   const StagePoint& previousPoint(int element) const;
-  std::vector<int> velocityInputs(int element, int stage) const;
+  /// Sets the step-equilibration auxiliaries (pi, max, nu, OR) of x consistently with its
+  /// s and lambda values, so a guess starts (nearly) feasible for them.
+  void completeDependentVariables(std::vector<double>& x) const override;
+  int numPairs() const override { return nc_; }
+  /// lambda and s = c(x) at the stages, and c's lowest value between them.
+  void readPairValues(const double* x, Trajectory& trajectory) const override;
+  /// c(x_start) <= tolerance.
+  std::vector<bool> activeAtStart(const double* x, const Trajectory& trajectory,
+                                  double tolerance) const override;
 
-  OcpDefinition ocp_;
   std::shared_ptr<const DcsModel> model_;
-  DiscretizationOptions options_;
-  ButcherTableau tableau_;
-  int nx_, nu_, nc_;
-  double nominal_step_;
-  bool steps_free_;
-  NlpAssembly nlp_;
-  StagePoint start_;
+  int nc_;
+  StagePoint start_;  ///< x is the grid's start state
   /// Data: lambda carried over a step boundary for continuity (continueFrom), else 0.
   int carried_lambda_ = -1;
-  CollocationGrid grid_;
   std::vector<std::vector<StagePoint>> stages_;  ///< per element, per stage
   std::vector<EquilibrationAuxiliaries> equilibration_;
-  int core_variables_ = 0;  ///< start, controls, steps, stage points: the same in any method
   int auxiliary_variables_begin_ = 0, auxiliary_variables_end_ = 0;  ///< [begin, end)
   int auxiliary_rows_begin_ = 0, auxiliary_rows_end_ = 0;
 };

@@ -3,9 +3,7 @@
 #include <memory>
 #include <vector>
 
-#include "fesd_trajopt/discretization/butcher_tableau.h"
-#include "fesd_trajopt/discretization/collocation_grid.h"
-#include "fesd_trajopt/discretization/discretization.h"
+#include "fesd_trajopt/discretization/collocation_discretization.h"
 #include "fesd_trajopt/model/stewart_model.h"
 
 namespace fesd {
@@ -54,29 +52,17 @@ struct SwitchIndicator {
 ///  - costs by the RK quadrature, control/state bounds, path and terminal constraints.
 /// In the complementarity-pair terms of a Trajectory, theta plays the multiplier and lambda
 /// the constraint value: mode i is active in an element when its theta_i outweighs lambda_i.
-class StewartDiscretization : public Discretization {
+class StewartDiscretization : public CollocationDiscretization {
  public:
   StewartDiscretization(OcpDefinition ocp, DiscretizationOptions options);
-  // The NLP's active-set hook refers to this object: it stays where it was built.
-  StewartDiscretization(const StewartDiscretization&) = delete;
-  StewartDiscretization& operator=(const StewartDiscretization&) = delete;
 
-  NlpAssembly& nlp() override { return nlp_; }
-  const NlpAssembly& nlp() const override { return nlp_; }
-  bool stepsAreFree() const override { return steps_free_; }
-  const OcpDefinition& ocp() const { return ocp_; }
-  const DiscretizationOptions& options() const { return options_; }
-  const ButcherTableau& tableau() const { return tableau_; }
   const StewartModel& model() const { return *model_; }
-  int numElements() const { return grid_.numElements(); }
-  double nominalStep() const { return nominal_step_; }
 
   void setInitialState(const Eigen::VectorXd& x0) override;
   /// Frees the start state within the OCP's initial state bounds again (a free-start OCP).
   void releaseInitialState();
   /// Nothing to take over: lambda at the start follows from the start state (eq. 39).
   void continueFrom(const Trajectory& previous, bool same_dynamics) override {}
-  void fixControl(int interval, const Eigen::VectorXd& u) override;
 
   std::vector<double> constantGuess(
       const std::vector<Eigen::VectorXd>& controls = {}) const override;
@@ -84,22 +70,13 @@ class StewartDiscretization : public Discretization {
   /// multipliers are not used.
   std::vector<double> guessFrom(const TrajectoryGuess& guess) const override;
   std::vector<double> translatedGuess(const std::vector<double>& previous_solution) const override;
-  std::vector<double> adoptedGuess(const Discretization& other,
-                                   const std::vector<double>& solution) const override;
 
-  Trajectory extract(const double* x, double start_time = 0.0,
-                     double activity_tolerance = kDefaultActivityTolerance,
-                     double penetration_tolerance = kDefaultPenetrationTolerance) const override;
   /// Modes whose indicator is within tolerance of its subsystem's minimum.
   std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const override;
 
   /// The switch indicator eta_n (eq. 31, without tanh) at every element boundary inside a
   /// control interval, in order; empty without step equilibration.
   std::vector<double> switchIndicators(const double* x) const;
-
-  int startStateIndex() const { return start_state_; }
-  int stepIndex(int element) const { return grid_.steps[element]; }
-  int controlIndex(int interval) const { return grid_.controls[interval]; }
 
  private:
   struct StagePoint {
@@ -116,6 +93,7 @@ class StewartDiscretization : public Discretization {
   };
   /// The step equilibration of the boundary between two elements of a control interval.
   struct Equilibration {
+    int element;              ///< the later element of the boundary
     std::vector<int> inputs;  ///< h_{n-1}, h_n, then the indicator's blocks
     SwitchIndicator indicator;
     int relaxed_row, equal_steps_row;
@@ -137,26 +115,24 @@ class StewartDiscretization : public Discretization {
   std::vector<int> closureLambdas(int element) const;
   /// Sets (lambda, mu) to the LP multipliers at the state x[state].
   void setLpMultipliers(std::vector<double>& x, int state, int lambda, int mu) const;
-  void completeBoundaryPoints(std::vector<double>& x) const;
+  /// (lambda, mu) of every boundary point from its state.
+  void completeDependentVariables(std::vector<double>& x) const override;
+  int numPairs() const override { return nf_; }
+  /// theta (the multiplier side) and lambda (the constraint side) at the stages.
+  void readPairValues(const double* x, Trajectory& trajectory) const override;
+  /// The modes active at the start state (activeAt).
+  std::vector<bool> activeAtStart(const double* x, const Trajectory& trajectory,
+                                  double tolerance) const override;
   /// lambda, mu of the LP at the point's state, and theta on each subsystem's (first) mode
   /// of smallest indicator.
   void setModeOfState(std::vector<double>& x, const StagePoint& point) const;
 
-  OcpDefinition ocp_;
   std::shared_ptr<const StewartModel> model_;
-  DiscretizationOptions options_;
-  ButcherTableau tableau_;
-  int nx_, nu_, nf_, nsys_;
-  double nominal_step_;
-  bool steps_free_;
+  int nf_, nsys_;
   bool stage_at_end_;  ///< c_ns = 1 (Radau-IIA): the last stage is the element's end
-  NlpAssembly nlp_;
-  int start_state_ = -1;
-  CollocationGrid grid_;
   std::vector<Element> elements_;
   BoundaryPoint final_boundary_;  ///< at the last element's end, c_ns != 1 only
   std::vector<Equilibration> equilibration_;
-  int core_variables_ = 0;
 };
 
 }  // namespace fesd

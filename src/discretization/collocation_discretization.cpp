@@ -1,0 +1,135 @@
+#include "fesd_trajopt/discretization/collocation_discretization.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <typeinfo>
+
+namespace fesd {
+namespace {
+
+constexpr double kInf = NlpAssembly::kInfinity;
+
+}  // namespace
+
+CollocationDiscretization::CollocationDiscretization(OcpDefinition ocp,
+                                                     DiscretizationOptions options)
+    : ocp_(std::move(ocp)),
+      options_(options),
+      tableau_(makeTableau(options.family, options.num_stages)) {
+  validateOcp(ocp_, options_);
+  nx_ = ocp_.model->stateSize();
+  nu_ = ocp_.model->controlSize();
+  nominal_step_ = fesd::nominalStep(ocp_, options_);
+}
+
+void CollocationDiscretization::fixControl(int interval, const Eigen::VectorXd& u) {
+  if (u.size() != nu_) throw std::invalid_argument("control has the wrong size");
+  fesd::fixControl(nlp_, grid_, interval, u);
+}
+
+void CollocationDiscretization::freeControl(int interval) {
+  fesd::freeControl(nlp_, grid_, ocp_, interval);
+}
+
+std::vector<double> CollocationDiscretization::adoptedGuess(
+    const Discretization& other_discretization, const std::vector<double>& solution) const {
+  const auto* other = dynamic_cast<const CollocationDiscretization*>(&other_discretization);
+  if (!other || typeid(*other) != typeid(*this) || other->core_variables_ != core_variables_ ||
+      other->numElements() != numElements() || other->tableau_.stages != tableau_.stages ||
+      static_cast<int>(solution.size()) != other->nlp_.numVariables()) {
+    throw std::invalid_argument("adoptedGuess: the discretisations' grids differ");
+  }
+  std::vector<double> x = constantGuess();
+  std::copy(solution.begin(), solution.begin() + core_variables_, x.begin());
+  completeDependentVariables(x);
+  return x;
+}
+
+Trajectory CollocationDiscretization::extract(const double* x, double start_time,
+                                              double activity_tolerance,
+                                              double penetration_tolerance) const {
+  Trajectory trajectory = gridTrajectory(x, grid_, ocp_, start_state_, numPairs(), start_time);
+  readPairValues(x, trajectory);
+  classifySwitches(trajectory, activeAtStart(x, trajectory, activity_tolerance), activity_tolerance,
+                   penetration_tolerance);
+  return trajectory;
+}
+
+void CollocationDiscretization::addStartState() {
+  start_state_ = nlp_.addVariables(nx_, -kInf, kInf);
+}
+
+void CollocationDiscretization::fixStartState(const Eigen::VectorXd& x0) {
+  if (x0.size() != nx_) throw std::invalid_argument("initial state has the wrong size");
+  ocp_.initial_state = x0;
+  for (int d = 0; d < nx_; ++d) {
+    nlp_.setVariableBounds(start_state_ + d, x0(d), x0(d));
+    nlp_.initialGuess()[start_state_ + d] = x0(d);
+  }
+}
+
+int CollocationDiscretization::addStateVariables() {
+  const int x = nlp_.addVariables(nx_, -kInf, kInf);
+  for (int d = 0; d < nx_; ++d) {
+    nlp_.setVariableBounds(x + d, ocp_.state_lower.size() ? ocp_.state_lower(d) : -kInf,
+                           ocp_.state_upper.size() ? ocp_.state_upper(d) : kInf);
+  }
+  return x;
+}
+
+int CollocationDiscretization::elementStartState(int element) const {
+  return element == 0 ? start_state_ : grid_.end_states[element - 1];
+}
+
+void CollocationDiscretization::addRungeKuttaRows(
+    int element, const std::shared_ptr<const SmoothFunction>& velocity,
+    const std::vector<int>& stage_blocks, int block_size) {
+  const int ns = tableau_.stages;
+  const std::vector<int>& stages = grid_.stage_states[element];
+  const int start = elementStartState(element), end = grid_.end_states[element];
+  const bool end_is_stage = end == stages.back();
+  const int first_row = nlp_.addRows(ns * nx_, 0.0, 0.0);
+  const int end_row = end_is_stage ? -1 : nlp_.addRows(nx_, 0.0, 0.0);
+  auto add_state_difference = [&](int row, int state) {
+    for (int d = 0; d < nx_; ++d) {
+      nlp_.addLinear(row + d, state + d, 1.0);
+      nlp_.addLinear(row + d, start + d, -1.0);
+    }
+  };
+  for (int i = 0; i < ns; ++i) add_state_difference(first_row + i * nx_, stages[i]);
+  if (end_row >= 0) add_state_difference(end_row, end);
+  for (int j = 0; j < ns; ++j) {
+    std::vector<NlpAssembly::Target> targets;
+    for (int i = 0; i < ns; ++i) {
+      if (tableau_.a(i, j) != 0.0) targets.push_back({first_row + i * nx_, -tableau_.a(i, j)});
+    }
+    if (end_row >= 0) targets.push_back({end_row, -tableau_.b(j)});
+    std::vector<int> inputs = stateControlInputs(grid_, stages[j], element, nx_, nu_);
+    for (int i = 0; i < block_size; ++i) inputs.push_back(stage_blocks[j] + i);
+    nlp_.addFunctionTerm(velocity, inputs, grid_.steps[element], targets);
+  }
+}
+
+std::vector<int> CollocationDiscretization::innerBoundaries() const {
+  std::vector<int> elements;
+  for (int e = 1; e < numElements(); ++e) {
+    if (e % options_.num_elements != 0) elements.push_back(e);
+  }
+  return elements;
+}
+
+int CollocationDiscretization::addEqualStepsRow(int element) {
+  const int row = nlp_.addRows(1, -kInf, kInf);
+  nlp_.addLinear(row, {{grid_.steps[element - 1], 1.0}, {grid_.steps[element], -1.0}});
+  return row;
+}
+
+void CollocationDiscretization::requireOwnSize(const std::vector<double>& solution,
+                                               const char* caller) const {
+  if (static_cast<int>(solution.size()) != nlp_.numVariables()) {
+    throw std::invalid_argument(std::string(caller) + ": solution of a differently sized problem");
+  }
+}
+
+}  // namespace fesd
