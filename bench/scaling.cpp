@@ -1,14 +1,12 @@
 // scaling: how solve time grows with the horizon's resolution (N_ctrl, on the manipulation
 // showcase) and with the number of bodies (lanes of pusher and puck), with pair pruning on/off.
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
 #include "commands.h"
 #include "fesd_trajopt/examples/manipulation_example.h"
-#include "fesd_trajopt/ocp/ocp_solver.h"
-#include "fesd_trajopt/scene/moving_part.h"
-#include "fesd_trajopt/scene/push_plan.h"
-#include "fesd_trajopt/scene/scene_task.h"
+#include "fesd_trajopt/scene/scene_solver.h"
 
 namespace fesd_bench {
 namespace {
@@ -35,30 +33,25 @@ fesd::SceneTask lanesTask(int lanes, int intervals) {
   return task;
 }
 
-struct Run {
-  fesd::OcpSolution solution;
-  int modelled_pairs, variables, complementarities;
-};
-
-Run solveTask(const fesd::SceneTask& task, bool pruning, const fesd::OcpOptions& options) {
-  std::vector<fesd::PairDecision> decisions = fesd::decidePairs(task);
-  if (!pruning) {
-    for (fesd::PairDecision& decision : decisions) decision.modelled = true;
+fesd::SceneOutcome solveTask(const fesd::SceneTask& task, bool pruning,
+                             const fesd::OcpOptions& options) {
+  fesd::SceneSolveOptions scene_options;
+  scene_options.ocp = options;
+  scene_options.prune_pairs = pruning;
+  const fesd::SceneOutcome outcome = fesd::solveSceneTask(task, fesd::TaskLimits{}, scene_options);
+  if (!outcome.solved()) {
+    throw std::runtime_error("scaling: task not solved: " + outcome.invalid + outcome.infeasible);
   }
-  const fesd::MovingPart part = fesd::movingPart(task, decisions);
-  fesd::OcpSolver solver(fesd::buildOcp(part.task, part.modelled), options);
-  Run run{solver.solve(fesd::planPushes(part.task, part.modelled).guess),
-          static_cast<int>(part.modelled.size()), solver.discretization().nlp().numVariables(),
-          solver.discretization().nlp().numComplementarities()};
-  return run;
+  return outcome;
 }
 
-void printRun(const char* sweep, int intervals, int bodies, bool pruning, const Run& run) {
-  const fesd::MpccReport& report = run.solution.report;
+void printRun(const char* sweep, int intervals, int bodies, bool pruning,
+              const fesd::SceneOutcome& run) {
+  const fesd::MpccReport& report = run.report;
   std::printf("%s,%d,%d,%s,%d,%d,%d,%s,%d,%.3f,%.3f\n", sweep, intervals, bodies,
-              pruning ? "on" : "off", run.modelled_pairs, run.variables, run.complementarities,
-              fesd::statusName(run.solution.status).c_str(), report.iterations, report.cpu_seconds,
-              report.wall_seconds);
+              pruning ? "on" : "off", run.modelled_pairs, run.sizes.variables,
+              run.sizes.complementarities, fesd::statusName(run.status).c_str(), report.iterations,
+              report.cpu_seconds, report.wall_seconds);
   std::fflush(stdout);
 }
 

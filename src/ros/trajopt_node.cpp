@@ -6,9 +6,7 @@
 
 #include "fesd_trajopt/examples/circle_example.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
-#include "fesd_trajopt/ocp/ocp_solver.h"
-#include "fesd_trajopt/scene/moving_part.h"
-#include "fesd_trajopt/scene/push_plan.h"
+#include "fesd_trajopt/scene/scene_solver.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 #include "scene_request.h"
 #include "solution_message.h"
@@ -131,49 +129,35 @@ void TrajoptNode::handleSolve(const fesd_trajopt::SolveTrajectory::Request& requ
     return refuse(response, "the complementarity tolerance must be > 0 and finite");
   }
   if (!(budget > 0.0)) return refuse(response, "the wall-time budget must be > 0");
-  const std::string problem = fesd::validateTask(task, config_.limits);
-  if (!problem.empty()) return refuse(response, problem);
-  const std::string infeasible = fesd::infeasibility(task);
-  if (!infeasible.empty()) return answerInfeasible(response, infeasible);
-
-  const std::vector<fesd::PairDecision> decisions = fesd::decidePairs(task);
-  const fesd::MovingPart part = fesd::movingPart(task, decisions);
-  const fesd::OcpDefinition ocp = fesd::buildOcp(part.task, part.modelled);
-  fesd::OcpOptions options;
-  options.discretization.num_elements = grid.elements;
-  options.discretization.num_stages = grid.stages;
-  options.discretization.switch_detection =
+  fesd::SceneSolveOptions options;
+  options.ocp.discretization.num_elements = grid.elements;
+  options.ocp.discretization.num_stages = grid.stages;
+  options.ocp.discretization.switch_detection =
       request.method == fesd_trajopt::SolveTrajectory::Request::METHOD_DEFAULT
           ? config_.fesd
           : request.method == fesd_trajopt::SolveTrajectory::Request::METHOD_FESD;
-  options.homotopy.complementarity_tolerance = tolerance;
-  options.homotopy.wall_time_budget = budget;
-  ROS_INFO_STREAM("fesd_trajopt: solving "
-                  << part.bodies.size() << " moving of " << task.scene.bodies().size()
-                  << " bodies, " << part.modelled.size() << " modelled / "
-                  << decisions.size() - part.modelled.size() << " pruned pairs, "
+  options.ocp.homotopy.complementarity_tolerance = tolerance;
+  options.ocp.homotopy.wall_time_budget = budget;
+  options.verify = request.verify;
+  options.verification.num_stages = config_.verification_stages;
+  options.verification.num_elements = config_.verification_elements;
+  const fesd::SceneOutcome outcome = fesd::solveSceneTask(task, config_.limits, options);
+  if (!outcome.invalid.empty()) return refuse(response, outcome.invalid);
+  if (!outcome.infeasible.empty()) return answerInfeasible(response, outcome.infeasible);
+  ROS_INFO_STREAM("fesd_trajopt: solved "
+                  << outcome.moving_bodies.size() << " moving of " << task.scene.bodies().size()
+                  << " bodies, " << outcome.modelled_pairs << " modelled / "
+                  << outcome.decisions.size() - outcome.modelled_pairs << " pruned pairs, "
                   << task.num_intervals << " intervals x " << grid.elements
                   << " elements, n_s = " << grid.stages);
-  fesd::OcpSolver solver(ocp, options);
-  // The push plan is a deterministic first guess: the same request gives the same plan on every
-  // machine, whatever its BLAS (a constant start did not).
-  const fesd::OcpSolution solution = solver.solve(fesd::planPushes(part.task, part.modelled).guess);
-  response.solution = sceneSolution(
-      task, decisions, fesd::fullSceneTrajectory(task, part, solution.trajectory), solution.report);
-  response.solution.message = solution.message;  // with the warning on unresolved switches
-  response.solution.statistics.start = fesd::startName(solution.start, "push plan");
-  const fesd::NlpAssembly& nlp = solver.discretization().nlp();
-  response.solution.statistics.nlp_variables = nlp.numVariables();
-  response.solution.statistics.nlp_constraints = nlp.numConstraints();
-  response.solution.statistics.complementarity_constraints = nlp.numComplementarities();
-  if (request.verify) {
-    fesd::SimulationOptions fine;
-    fine.discretization.num_stages = config_.verification_stages;
-    fine.discretization.num_elements = config_.verification_elements;
-    fine.wall_time_budget = std::max(0.0, budget - stopwatch.wallSeconds());  // inf if out of time
-    response.solution.verified = true;
-    response.solution.verification_error = fesd::resimulationError(ocp, solution, fine);
-  }
+  response.solution = sceneSolution(task, outcome.decisions, outcome.trajectory, outcome.report);
+  response.solution.message = outcome.message;  // with the warning on unresolved switches
+  response.solution.statistics.start = fesd::startName(outcome.start, "push plan");
+  response.solution.statistics.nlp_variables = outcome.sizes.variables;
+  response.solution.statistics.nlp_constraints = outcome.sizes.constraints;
+  response.solution.statistics.complementarity_constraints = outcome.sizes.complementarities;
+  response.solution.verified = outcome.verified;
+  if (outcome.verified) response.solution.verification_error = outcome.verification_error;
   response.solution.header.stamp = ros::Time::now();
   response.solution.header.frame_id = config_.frame_id;
   response.solution.statistics.wall_time = stopwatch.wallSeconds();
@@ -238,7 +222,6 @@ void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
   const fesd::DiscScene& scene = task.scene;
   const int dim = scene.dimension();
   std::vector<Eigen::VectorXd> controls(steps, Eigen::VectorXd::Zero(scene.controlSize()));
-  for (auto& body : task.bodies) body.max_speed = 0.0;  // reach from the actual commands
   for (const fesd_trajopt::BodyTrajectory& command : request.commands) {
     int b = -1;
     for (size_t i = 0; i < scene.bodies().size(); ++i) {
@@ -260,26 +243,13 @@ void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
       if (!u.allFinite())
         return refuse(response, "the command of '" + command.name + "' is not finite");
       controls[k].segment(scene.controlIndex(b), dim) = u;
-      task.bodies[b].max_speed = std::max(task.bodies[b].max_speed, u.cwiseAbs().maxCoeff());
     }
   }
-  // Workspace bounds are OCP constraints, not physics: a simulation neither enforces them nor
-  // may prune with them.
-  for (fesd::BodyTask& body : task.bodies) {
-    body.workspace_lower.resize(0);
-    body.workspace_upper.resize(0);
-  }
-  const std::string problem = fesd::validateTask(task, config_.limits);
-  if (!problem.empty()) return refuse(response, problem);
-  const std::vector<fesd::PairDecision> decisions = fesd::decidePairs(task);
-  const fesd::MovingPart part = fesd::movingPart(task, decisions);
-  const fesd::DiscScene& moving = part.task.scene;
-  fesd::FesdIntegrator integrator(moving.model(part.modelled), options);
-  const fesd::SimulationResult result =
-      integrator.simulate(moving.initialState(), task.horizon, steps, controls);
-  response.solution = sceneSolution(
-      task, decisions, fesd::fullSceneTrajectory(task, part, result.trajectory), result.totals);
-  response.solution.message = result.message;
+  const fesd::SceneOutcome outcome =
+      fesd::simulateSceneTask(task, controls, config_.limits, options);
+  if (!outcome.invalid.empty()) return refuse(response, outcome.invalid);
+  response.solution = sceneSolution(task, outcome.decisions, outcome.trajectory, outcome.report);
+  response.solution.message = outcome.message;
   response.solution.header.stamp = ros::Time::now();
   response.solution.header.frame_id = config_.frame_id;
   response.solution.statistics.wall_time = stopwatch.wallSeconds();

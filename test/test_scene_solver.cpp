@@ -1,0 +1,127 @@
+// The scene entry points: one call from a task to a full-scene trajectory, for planning and for
+// simulation, refusing what must not be solved.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "fesd_trajopt/scene/scene_solver.h"
+
+namespace {
+
+/// A pusher at (-3, 0), a puck at the origin (both R = 0.5) and a rock (R = 1) at (100, 100)
+/// that nothing reaches in T = 2 at speed 2.
+fesd::SceneTask pushingTask() {
+  fesd::SceneTask task;
+  task.scene.bodies() = {{"pusher", 0.5, Eigen::Vector2d(-3.0, 0.0), true},
+                         {"puck", 0.5, Eigen::Vector2d(0.0, 0.0), false},
+                         {"rock", 1.0, Eigen::Vector2d(100.0, 100.0), false}};
+  task.bodies.resize(3);
+  task.bodies[0].max_speed = 2.0;
+  task.horizon = 2.0;
+  task.num_intervals = 4;
+  return task;
+}
+
+fesd::SimulationOptions twoElements() {
+  fesd::SimulationOptions options;
+  options.discretization.num_elements = 2;
+  return options;
+}
+
+TEST(SimulateSceneTask, PushesThePuckAsTheProjectionPredictsWhateverTheOcpBounds) {
+  fesd::SceneTask task = pushingTask();
+  // OCP settings a simulation ignores: the reach comes from the commands, and workspace bounds
+  // are no physics.
+  task.bodies[0].max_speed = 0.1;
+  task.bodies[1].workspace_lower = Eigen::Vector2d(-1.0, -1.0);
+  task.bodies[1].workspace_upper = Eigen::Vector2d(0.5, 1.0);
+  const fesd::SceneOutcome outcome =
+      fesd::simulateSceneTask(task, {Eigen::Vector2d(2.0, 0.0)}, fesd::TaskLimits{}, twoElements());
+  ASSERT_TRUE(outcome.solved()) << outcome.invalid;
+  ASSERT_EQ(outcome.status, fesd::SolveStatus::kSuccess) << outcome.message;
+  EXPECT_EQ(outcome.moving_bodies, (std::vector<int>{0, 1}));
+  EXPECT_EQ(outcome.modelled_pairs, 1);
+  EXPECT_EQ(outcome.decisions.size(), 3u);
+  // Contact at t = 1, then both move at 1 m/s: pusher (0, 0), puck (1, 0); the rock stays.
+  Eigen::VectorXd expected(6);
+  expected << 0.0, 0.0, 1.0, 0.0, 100.0, 100.0;
+  EXPECT_LT((outcome.trajectory.finalState() - expected).norm(), 1e-9);
+  ASSERT_FALSE(outcome.trajectory.switches.empty());
+  EXPECT_NEAR(outcome.trajectory.switches.front().time, 1.0, 1e-9);
+  EXPECT_GT(outcome.report.iterations, 0);
+}
+
+TEST(SimulateSceneTask, RefusesControlsOfTheWrongCountSizeOrValue) {
+  const fesd::SceneTask task = pushingTask();
+  const fesd::TaskLimits limits;
+  const Eigen::Vector2d u(1.0, 0.0);
+  EXPECT_NE(fesd::simulateSceneTask(task, {u, u}, limits, twoElements()).invalid.find("one per"),
+            std::string::npos);
+  EXPECT_NE(fesd::simulateSceneTask(task, {Eigen::Vector3d::Zero()}, limits, twoElements())
+                .invalid.find("control size"),
+            std::string::npos);
+  EXPECT_NE(fesd::simulateSceneTask(task, {Eigen::Vector2d(NAN, 0.0)}, limits, twoElements())
+                .invalid.find("finite"),
+            std::string::npos);
+  fesd::SceneTask overlapping = task;
+  overlapping.scene.bodies()[1].position(0) = -2.5;
+  const fesd::SceneOutcome refused =
+      fesd::simulateSceneTask(overlapping, {u}, limits, twoElements());
+  EXPECT_NE(refused.invalid.find("overlap"), std::string::npos) << refused.invalid;
+  EXPECT_TRUE(refused.trajectory.states.empty());
+}
+
+TEST(SolveSceneTask, RefusesInvalidTasksAndNamesUnreachableTargetsWithoutSolving) {
+  fesd::SceneTask invalid = pushingTask();
+  invalid.scene.bodies()[1].radius = -1.0;
+  const fesd::SceneOutcome refused =
+      fesd::solveSceneTask(invalid, fesd::TaskLimits{}, fesd::SceneSolveOptions{});
+  EXPECT_NE(refused.invalid.find("radius"), std::string::npos) << refused.invalid;
+  EXPECT_FALSE(refused.solved());
+
+  fesd::SceneTask unreachable = pushingTask();
+  unreachable.bodies[2].target = Eigen::Vector2d(0.0, 0.0);  // the rock: nothing can push it
+  unreachable.bodies[2].target_weight = 1.0;
+  const fesd::SceneOutcome infeasible =
+      fesd::solveSceneTask(unreachable, fesd::TaskLimits{}, fesd::SceneSolveOptions{});
+  EXPECT_EQ(infeasible.invalid, "");
+  EXPECT_NE(infeasible.infeasible.find("rock"), std::string::npos) << infeasible.infeasible;
+  EXPECT_TRUE(infeasible.trajectory.states.empty());
+  EXPECT_EQ(infeasible.report.iterations, 0);
+}
+
+TEST(SolveSceneTask, PushesThePuckToItsTargetOnlyModellingWhatCanTouch) {
+  fesd::SceneTask task = pushingTask();
+  task.bodies[1].target = Eigen::Vector2d(1.0, 0.0);
+  task.bodies[1].target_weight = 100.0;
+  fesd::SceneSolveOptions options;
+  options.ocp.discretization.num_elements = 2;
+  options.verify = true;
+  options.verification.num_elements = 4;
+  options.verification.num_stages = 3;
+  const fesd::SceneOutcome pruned = fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
+  ASSERT_TRUE(pruned.solved()) << pruned.invalid << pruned.infeasible;
+  ASSERT_EQ(pruned.status, fesd::SolveStatus::kSuccess) << pruned.message;
+  EXPECT_EQ(pruned.moving_bodies, (std::vector<int>{0, 1}));
+  EXPECT_EQ(pruned.modelled_pairs, 1);
+  const Eigen::VectorXd final_state = pruned.trajectory.finalState();
+  ASSERT_EQ(final_state.size(), 6);
+  EXPECT_LT((final_state.segment<2>(2) - Eigen::Vector2d(1.0, 0.0)).norm(), 0.05);
+  EXPECT_EQ(final_state.tail<2>(), Eigen::Vector2d(100.0, 100.0));
+  EXPECT_GT(pruned.sizes.complementarities, 0);
+  EXPECT_TRUE(pruned.verified);
+  EXPECT_LT(pruned.verification_error, 1e-6);
+
+  // Every pair modelled: the rock moves with the rest (three bodies' states), same answer.
+  options.prune_pairs = false;
+  options.verify = false;
+  const fesd::SceneOutcome full = fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
+  ASSERT_EQ(full.status, fesd::SolveStatus::kSuccess) << full.message;
+  EXPECT_EQ(full.modelled_pairs, 3);
+  EXPECT_EQ(full.moving_bodies.size(), 3u);
+  EXPECT_GT(full.sizes.variables, pruned.sizes.variables);
+  EXPECT_FALSE(full.verified);
+  EXPECT_LT((full.trajectory.finalState() - final_state).norm(), 1e-6);
+}
+
+}  // namespace
