@@ -28,7 +28,8 @@ const std::map<std::string, Command>& commands() {
         "    --stages=1,2,3,4 --steps=5,10,20,40 --intervals=10,20,30"}},
       {"ocp-manipulation",
        {fesd_bench::ocpManipulation,
-        "The collaborative manipulation OCP (seed 000 Sec. IV-B), key=value per run.\n"
+        "The collaborative manipulation OCP (Pozharskiy et al. 2024 Sec. IV-B), key=value per "
+        "run.\n"
         "    --intervals=30 --elements=3 --stages=2 --fesd=true --repeat=1 --step-bound=0.5\n"
         "    --start=plan|constant (first guess: the push plan, or every state at x0)\n"
         "    --guess-sigma=1e-2 --guess-early-polish=1e-2 --fixed-grid-until=1e-2 (constant)\n"
@@ -51,7 +52,8 @@ const std::map<std::string, Command>& commands() {
         "    --lanes=1,2,3,4,6,8 --lane-intervals=10 --elements=2 --stages=2 --budget=120"}},
       {"order-filippov",
        {fesd_bench::orderFilippov,
-        "Example (47) (seed 001): terminal error vs step for FESD and standard, Radau-IIA and\n"
+        "Example (47) (Nurkanovic et al. 2024): terminal error vs step for FESD and standard, "
+        "Radau-IIA and\n"
         "    Gauss-Legendre, CSV. --radau-stages=1,2,3 --gauss-stages=1,2\n"
         "    --totals=16,24,32,48,64,96,128 --elements=2 (per step) --methods=fesd,standard\n"
         "    --kappa=0.01 (homotopy) --equilibration=indicator|tanh|none\n"
@@ -59,7 +61,8 @@ const std::map<std::string, Command>& commands() {
         "    --refine-elements=0 (1: refine stretched elements) --max-element-stretch=1.05"}},
       {"ocp-filippov",
        {fesd_bench::ocpFilippov,
-        "OCP (61) (seed 001), two sliding surfaces: terminal error of a fine re-simulation of\n"
+        "OCP (61) (Nurkanovic et al. 2024), two sliding surfaces: terminal error of a fine "
+        "re-simulation of\n"
         "    the optimal controls vs CPU time, CSV. --stages=1,2,3,4 --elements=1,...,7\n"
         "    --methods=fesd,standard --family=radau|gauss --equilibration=indicator|tanh|none\n"
         "    --budget=120 (s per solve) --reference-stages=4 --reference-elements=12\n"
@@ -74,13 +77,15 @@ const std::map<std::string, Command>& commands() {
         "    --max-element-stretch=1.05 --reference-steps=161 --budget=60"}},
       {"sign-ocp",
        {fesd_bench::signOcp,
-        "OCP (56) (seed 001): x0 found from forward-simulation guesses, FESD vs standard, with a\n"
+        "OCP (56) (Nurkanovic et al. 2024): x0 found from forward-simulation guesses, FESD vs "
+        "standard, with a\n"
         "    homotopy or one relaxed NLP at a fixed sigma, or by OcpSolver from constant guesses,\n"
         "    CSV. --methods=fesd,standard --strategies=homotopy,fixed,ocp-solver\n"
         "    --fixed-sigma=1e-15 --guesses=-2.5,-2,...,2"}},
       {"order-pds",
        {fesd_bench::orderPds,
-        "Example 1 (seed 000): terminal error vs step for FESD and standard, Radau-IIA.\n"
+        "Example 1 (Pozharskiy et al. 2024): terminal error vs step for FESD and standard, "
+        "Radau-IIA.\n"
         "    --stages=1,2,3,4 --totals=10,20,40,80,140,200,400 --elements=2 (per step)\n"
         "    --methods=fesd,standard --repeat=1 (timing: best of N) --profile (iterations per\n"
         "    homotopy level) --sigma0=1 --kappa=0.01 (homotopy) "

@@ -1,7 +1,8 @@
-// ocp-accuracy: what accuracy costs on the manipulation showcase (seed 000 Sec. IV-B; the
-// analogue of seed 001 Fig. 13). Each run solves the OCP, then re-simulates its optimal controls
-// with a much finer FESD integration; the distance of the two terminal states is the accuracy.
-// Solves start from the push plan (--start=plan, as the node does) or the constant guess.
+// ocp-accuracy: what accuracy costs on the manipulation showcase (Pozharskiy et al. 2024 Sec. IV-B;
+// the analogue of Nurkanovic et al. 2024 Fig. 13). Each run solves the OCP, then re-simulates its
+// optimal controls with a much finer FESD integration; the distance of the two terminal states is
+// the accuracy. Solves start from the push plan (--start=plan, as the node does) or the constant
+// guess.
 #include <cmath>
 #include <cstdio>
 

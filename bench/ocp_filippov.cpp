@@ -1,5 +1,5 @@
-// ocp-filippov: seed 001 Sec. 5.3, OCP (61) on two sliding surfaces (n_sys = 2). Each run
-// solves the OCP, re-simulates its optimal controls with a much finer FESD integration and
+// ocp-filippov: Nurkanovic et al. 2024 Sec. 5.3, OCP (61) on two sliding surfaces (n_sys = 2). Each
+// run solves the OCP, re-simulates its optimal controls with a much finer FESD integration and
 // reports the distance of that simulation's end position to the target (the paper's E(T),
 // Fig. 13) against CPU time; optionally the element lengths and switch indicators (Fig. 12).
 #include <cstdio>

@@ -1,5 +1,5 @@
-// ocp-manipulation: seed 000 Sec. IV-B, the collaborative manipulation OCP. One line of
-// key=value pairs per run.
+// ocp-manipulation: Pozharskiy et al. 2024 Sec. IV-B, the collaborative manipulation OCP. One line
+// of key=value pairs per run.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

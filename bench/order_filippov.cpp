@@ -1,5 +1,5 @@
-// order-filippov: seed 001 Sec. 4.4, terminal error of example (47) against the step size,
-// FESD vs the standard fixed-step method, Radau-IIA and Gauss-Legendre.
+// order-filippov: Nurkanovic et al. 2024 Sec. 4.4, terminal error of example (47) against the step
+// size, FESD vs the standard fixed-step method, Radau-IIA and Gauss-Legendre.
 #include <cmath>
 #include <iostream>
 #include <limits>

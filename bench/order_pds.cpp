@@ -1,5 +1,5 @@
-// order-pds: seed 000 Sec. IV-A, terminal error and switch-time error of Example 1 against the
-// step size, FESD vs the standard fixed-step method, Radau-IIA with 1..4 stages.
+// order-pds: Pozharskiy et al. 2024 Sec. IV-A, terminal error and switch-time error of Example 1
+// against the step size, FESD vs the standard fixed-step method, Radau-IIA with 1..4 stages.
 #include <cmath>
 #include <functional>
 #include <iostream>

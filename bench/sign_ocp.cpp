@@ -1,6 +1,6 @@
-// sign-ocp: seed 001 Sec. 4.6, OCP (56) from forward simulations of several initial values as
-// guesses: the x0 found by FESD and the standard method, with a homotopy or a single relaxed
-// NLP at a fixed sigma (no polishing), against the analytic optimum; and (strategy
+// sign-ocp: Nurkanovic et al. 2024 Sec. 4.6, OCP (56) from forward simulations of several initial
+// values as guesses: the x0 found by FESD and the standard method, with a homotopy or a single
+// relaxed NLP at a fixed sigma (no polishing), against the analytic optimum; and (strategy
 // "ocp-solver") OcpSolver's two-stage homotopy from the constant guess x0_guess.
 #include <cmath>
 #include <cstdio>

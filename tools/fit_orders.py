@@ -8,7 +8,7 @@ error is below the floor (default 1e-12), or below the plateau level (default 1e
 improving on the coarser run. Larger errors are all kept, even where they do not decrease
 monotonically (the standard method's error depends on where switches fall in an element).
 `--from-total FAMILY:N_S=TOTAL` leaves out that scheme's runs on coarser grids than TOTAL
-elements (pre-asymptotic ones, e.g. implicit Euler damping seed 001's spiral).
+elements (pre-asymptotic ones, e.g. implicit Euler damping the spiral of Nurkanovic et al. 2024).
 """
 import argparse
 import csv

@@ -10,7 +10,7 @@ namespace {
 constexpr double kInf = NlpAssembly::kInfinity;
 
 /// ((h_n - h_{n-1}) / h0) * eta on z = (h_{n-1}, h_n, the indicator's blocks), or with
-/// tanh(eta) (seed 001, eq. 31). Every NLP variable enters z once.
+/// tanh(eta) (Nurkanovic et al. 2024, eq. 31). Every NLP variable enters z once.
 struct EquilibrationResidual {
   SwitchIndicator indicator;
   double h0;

@@ -1,5 +1,6 @@
-// fesd_circle_example: simulates seed 000, Example 1 with the FESD integrator and prints the
-// trajectory's end point, the detected switches against the exact ones, and solver statistics.
+// fesd_circle_example: simulates Pozharskiy et al. 2024, Example 1 with the FESD integrator and
+// prints the trajectory's end point, the detected switches against the exact ones, and solver
+// statistics.
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -21,7 +22,8 @@ int run(int stages, int steps, int elements) {
   const Eigen::VectorXd& end = result.trajectory.finalState();
   const Eigen::Vector2d exact = example::exactState(example::horizon());
   std::printf(
-      "FESD integrator, seed 000 Example 1: xdot = (x2, -x1 + lambda), 0 <= x2 + 1 _|_ lambda >= "
+      "FESD integrator, Pozharskiy et al. 2024 Example 1: xdot = (x2, -x1 + lambda), 0 <= x2 + 1 "
+      "_|_ lambda >= "
       "0\n");
   std::printf("  Radau-IIA, %d stage(s); %d steps x %d elements over T = %.6f\n", stages, steps,
               elements, example::horizon());

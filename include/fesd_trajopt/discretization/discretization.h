@@ -28,7 +28,7 @@ class Discretization {
   virtual void setInitialState(const Eigen::VectorXd& x0) = 0;
   /// Takes over what the next simulation step needs from the end of the previous one.
   /// `same_dynamics`: the right-hand side continues unchanged into this step (same control), so
-  /// a contact force cannot jump down at its start (seed 000, Proposition 2).
+  /// a contact force cannot jump down at its start (Pozharskiy et al. 2024, Proposition 2).
   virtual void continueFrom(const Trajectory& previous, bool same_dynamics) = 0;
   /// Fixes the control of interval k to u (simulation).
   virtual void fixControl(int interval, const Eigen::VectorXd& u) = 0;

@@ -4,18 +4,18 @@
 
 namespace fesd {
 
-/// How the cross-complementarity conditions (seed 000, eq. 8) are imposed.
+/// How the cross-complementarity conditions (Pozharskiy et al. 2024, eq. 8) are imposed.
 enum class CrossComplementarity {
   kElementSums,  ///< one product of sums per element and constraint (few, denser rows)
   kStagePairs,   ///< one product per pair of points (many, sparser rows)
 };
 
-/// Step equilibration of a Filippov system (seed 001, eq. 31): (h_n - h_{n-1}) eta_n = 0 with
-/// the switch indicator eta_n, or with tanh(eta_n) for a better scaling; or none (the steps
-/// are then free wherever nothing switches). A PDS always uses its own exact form.
+/// Step equilibration of a Filippov system (Nurkanovic et al. 2024, eq. 31): (h_n - h_{n-1}) eta_n
+/// = 0 with the switch indicator eta_n, or with tanh(eta_n) for a better scaling; or none (the
+/// steps are then free wherever nothing switches). A PDS always uses its own exact form.
 enum class StepEquilibration { kNone, kIndicator, kTanhIndicator };
 
-/// How a PDS discretisation imposes step equilibration (seed 000, Sec. III-C).
+/// How a PDS discretisation imposes step equilibration (Pozharskiy et al. 2024, Sec. III-C).
 enum class PdsStepEquilibration {
   /// Relaxed NLPs carry only the vanishing step regulariser; active-set polishing imposes the
   /// combinatorial meaning of Table I exactly: h_{n-1} = h_n at every boundary without a switch.

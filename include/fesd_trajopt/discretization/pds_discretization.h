@@ -8,7 +8,7 @@
 namespace fesd {
 
 /// The FESD (or, with switch detection off, the standard fixed-step) discretisation of an
-/// OcpDefinition as a relaxable MPCC (seed 000, Sec. III):
+/// OcpDefinition as a relaxable MPCC (Pozharskiy et al. 2024, Sec. III):
 ///  - Runge-Kutta equations of every finite element (eq. 6a),
 ///  - lifted constraint values s = c(x) at every stage point and s >= 0, lambda >= 0,
 ///  - complementarity: per stage (standard) or cross-complementarity (eq. 8) in the chosen form,

@@ -8,8 +8,8 @@
 
 namespace fesd {
 
-/// The switch indicator of step equilibration (seed 001, eq. 31) at the boundary between two
-/// elements, on blocks of n_f values (lambda or theta at a point):
+/// The switch indicator of step equilibration (Nurkanovic et al. 2024, eq. 31) at the boundary
+/// between two elements, on blocks of n_f values (lambda or theta at a point):
 ///   eta = prod_i (sum_B lambda_i sum_F lambda_i + sum_B theta_i sum_F theta_i),
 /// B over the earlier element's closure, F over the later one's. The sums list block positions;
 /// the lambda block at the common boundary belongs to both.
@@ -37,7 +37,8 @@ struct SwitchIndicator {
 };
 
 /// The FESD (or, with switch detection off, the standard fixed-step) discretisation of an
-/// OcpDefinition on a Filippov system in Stewart's form (seed 001, Sec. 3) as a relaxable MPCC:
+/// OcpDefinition on a Filippov system in Stewart's form (Nurkanovic et al. 2024, Sec. 3) as a
+/// relaxable MPCC:
 ///  - collocation equations of every finite element for xdot = F(x, u) theta (eq. 25), and for
 ///    a scheme with c_ns != 1 (Gauss-Legendre) the element's end state x_n + h sum_i b_i v_i,
 ///  - at every stage point g(x) - lambda - mu e = 0 and e^T theta^k = 1 per subsystem,
@@ -109,7 +110,8 @@ class StewartDiscretization : public CollocationDiscretization {
   void buildComplementarity();
   void buildStepEquilibration();
   /// With the active set fixed (polishing): the relaxed equilibration rows are dropped, and
-  /// h_{n-1} = h_n imposed where eta_n cannot vanish (no switch, seed 001 Sec. 3.2.3).
+  /// h_{n-1} = h_n imposed where eta_n cannot vanish (no switch, Nurkanovic et al. 2024
+  /// Sec. 3.2.3).
   void equilibrateActiveSet();
   /// The lambda blocks of an element's closure: start boundary, stages, end boundary.
   std::vector<int> closureLambdas(int element) const;

@@ -92,7 +92,7 @@ Eigen::VectorXd lowestConstraintBetweenStages(const SmoothFunction& constraints,
 /// constraint before the element counts as stepping over a contact. Within resolved contacts
 /// the polynomial bends off the constraint by the interpolation error only (measured: at most
 /// 9e-3 on the showcase OCP with N = 20, 40 and 2, 3 elements); a skipped contact goes deep
-/// (0.09 on seed 000 Example 1 in one element).
+/// (0.09 on Pozharskiy et al. 2024 Example 1 in one element).
 constexpr double kDefaultPenetrationTolerance = 3e-2;
 
 /// The elements with an unresolved switch (see UnresolvedSwitch): an active set that changes

@@ -8,7 +8,7 @@
 
 namespace fesd {
 
-/// Seed 000, Example 1: xdot = (x2, -x1 + lambda), 0 <= x2 + 1 _|_ lambda >= 0, from
+/// Pozharskiy et al. 2024, Example 1: xdot = (x2, -x1 + lambda), 0 <= x2 + 1 _|_ lambda >= 0, from
 /// x(0) = (sqrt 2, sqrt 2). A circle of radius 2 until contact at 5 pi / 12, sliding along
 /// x2 = -1 until release at 5 pi / 12 + sqrt 3, then a circle of radius 1.
 namespace circle_example {

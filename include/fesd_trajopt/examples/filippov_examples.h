@@ -10,8 +10,8 @@
 
 namespace fesd {
 
-/// Seed 001, example (47): xdot = A1 x inside the unit circle (c(x) = |x|^2 - 1 < 0), A2 x
-/// outside, from x(0) = (1/e, 0): a spiral that crosses the circle at t = 1. Clockwise
+/// Nurkanovic et al. 2024, example (47): xdot = A1 x inside the unit circle (c(x) = |x|^2 - 1 < 0),
+/// A2 x outside, from x(0) = (1/e, 0): a spiral that crosses the circle at t = 1. Clockwise
 /// rotation inside, anticlockwise outside, radius e^(t - 1) throughout.
 namespace spiral_example {
 std::shared_ptr<const StewartModel> model();
@@ -21,7 +21,7 @@ double switchTime();                   ///< 1
 Eigen::Vector2d exactState(double t);  ///< t >= 1
 }  // namespace spiral_example
 
-/// Seed 001, OCP (56): min_{x0} int_0^2 x^2 dt + (x(2) - 5/3)^2, xdot in 2 - sign(x).
+/// Nurkanovic et al. 2024, OCP (56): min_{x0} int_0^2 x^2 dt + (x(2) - 5/3)^2, xdot in 2 - sign(x).
 /// Only x0 is free; the reduced objective has its minimum at x0* = -(sqrt(417) - 9) / 8.
 namespace sign_example {
 std::shared_ptr<const StewartModel> model();
@@ -37,13 +37,13 @@ struct Result {
   double initial_state;  ///< x0 found
   double objective;
 };
-/// The experiment of seed 001 Sec. 4.6: a forward simulation from x0_guess with the same
-/// method and grid is the guess; the OCP is then solved with the given homotopy (e.g. a single
+/// The experiment of Nurkanovic et al. 2024 Sec. 4.6: a forward simulation from x0_guess with the
+/// same method and grid is the guess; the OCP is then solved with the given homotopy (e.g. a single
 /// relaxed NLP at a fixed sigma).
 Result solve(double x0_guess, bool fesd, const HomotopyOptions& homotopy);
 }  // namespace sign_example
 
-/// Seed 001, OCP (61): x = (q, v) in R^4, qdot = -sign(c(q)) + v componentwise with
+/// Nurkanovic et al. 2024, OCP (61): x = (q, v) in R^4, qdot = -sign(c(q)) + v componentwise with
 /// c = (phi1, phi2), phi1 = q1 + 0.15 q2^2, phi2 = -0.05 q1^3 + q2, vdot = u; two independent
 /// subsystems (n_sys = 2). min int_0^4 |u|^2 + |v|^2 dt, |v| <= 2, |u| <= 10, reaching
 /// q(4) = (-pi/6, -pi/4) (the terminal constraint that the paper's exact L1 penalty with

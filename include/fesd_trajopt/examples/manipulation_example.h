@@ -9,11 +9,11 @@
 
 namespace fesd {
 
-/// Seed 000, Sec. IV-B: two actuated discs (R = 1) push a passive disc (R = 2) to a goal.
-/// x = (p1, p2, p3), u = (u1, u2), f = (u1, u2, 0, 0), c_j = |p3 - pj|^2 - (R3 + Rj)^2, j = 1, 2;
-/// x0 = (-10, 10, 5, -5, 0, 0), -10 <= u <= 10, p1_x <= -2.5, p2_x >= 2.5 (neither actuator can
-/// do the job alone); cost int u^T R u dt + (x(T) - x_T)^T Q_T (x(T) - x_T), R = 1e-4 I,
-/// Q_T = diag(1, 1, 1, 1, 1e3, 1e3), x_T = (-10, 0, 10, 0, 0, 10), T = 5.
+/// Pozharskiy et al. 2024, Sec. IV-B: two actuated discs (R = 1) push a passive disc (R = 2) to a
+/// goal. x = (p1, p2, p3), u = (u1, u2), f = (u1, u2, 0, 0), c_j = |p3 - pj|^2 - (R3 + Rj)^2, j =
+/// 1, 2; x0 = (-10, 10, 5, -5, 0, 0), -10 <= u <= 10, p1_x <= -2.5, p2_x >= 2.5 (neither actuator
+/// can do the job alone); cost int u^T R u dt + (x(T) - x_T)^T Q_T (x(T) - x_T), R = 1e-4 I, Q_T =
+/// diag(1, 1, 1, 1, 1e3, 1e3), x_T = (-10, 0, 10, 0, 0, 10), T = 5.
 namespace manipulation_example {
 
 /// The scene, targets, weights, speed and workspace bounds as a task.

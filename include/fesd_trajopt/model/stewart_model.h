@@ -12,8 +12,8 @@
 
 namespace fesd {
 
-/// A Filippov system in Stewart's form (seed 001, eq. 8), possibly a Cartesian product of
-/// n_sys independent subsystems (eq. 21):
+/// A Filippov system in Stewart's form (Nurkanovic et al. 2024, eq. 8), possibly a Cartesian
+/// product of n_sys independent subsystems (eq. 21):
 ///   xdot = sum_k F^k(x, u) theta^k,   0 = g^k(x) - lambda^k - mu^k e,   1 = e^T theta^k,
 ///   0 <= theta^k  _|_  lambda^k >= 0,   k = 1..n_sys.
 /// theta, lambda and g stack the subsystems' modes (n_f = sum_k n_f^k modes in all). Given by
@@ -50,8 +50,9 @@ class StewartModel : public DynamicsModel {
   std::string name_;
 };
 
-/// The sign matrix S in {-1, 1}^(2^m x m) of m switching functions (seed 001, Sec. 2.2.1):
-/// row i is the sign pattern of region i; row 0 is all +1, the last column alternates fastest.
+/// The sign matrix S in {-1, 1}^(2^m x m) of m switching functions (Nurkanovic et al. 2024,
+/// Sec. 2.2.1): row i is the sign pattern of region i; row 0 is all +1, the last column alternates
+/// fastest.
 Eigen::MatrixXd signMatrix(int switching_functions);
 
 namespace detail {
@@ -118,9 +119,9 @@ std::shared_ptr<const StewartModel> makeStewartModel(int nx, int nu,
                                         indicator_function, std::move(name));
 }
 
-/// A Stewart model whose regions are given by switching functions (seed 001, Sec. 2.2.1, 2.3):
-/// subsystem k has m_k switching functions c^k(x) and 2^m_k modes, mode i being the region
-/// with the signs of row i of signMatrix(m_k); its indicators are g^k = -S^k c^k.
+/// A Stewart model whose regions are given by switching functions (Nurkanovic et al. 2024,
+/// Sec. 2.2.1, 2.3): subsystem k has m_k switching functions c^k(x) and 2^m_k modes, mode i being
+/// the region with the signs of row i of signMatrix(m_k); its indicators are g^k = -S^k c^k.
 ///   switching: template <class T> void operator()(const T* x, T* c) const;  c = (c^1, ...).
 template <class Modes, class Switching>
 std::shared_ptr<const StewartModel> makeSwitchingModel(int nx, int nu,
