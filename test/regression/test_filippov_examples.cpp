@@ -1,5 +1,6 @@
-// The examples of seed 001 with Stewart's reformulation: integration orders of example (47),
-// the optimum of OCP (56) from several guesses, and OCP (61) with two sliding surfaces.
+// The examples of Nurkanovic et al. 2024 with Stewart's reformulation: integration orders of
+// example (47), the optimum of OCP (56) from several guesses, and OCP (61) with two sliding
+// surfaces.
 #include <cmath>
 #include <set>
 #include <vector>
@@ -62,8 +63,8 @@ double spiralOrder(const OrderCase& c) {
 
 class SpiralFesdOrder : public ::testing::TestWithParam<OrderCase> {};
 
-/// Seed 001 Sec. 4.4: FESD recovers the order the scheme has on smooth ODE: 2 n_s - 1 for
-/// Radau-IIA, 2 n_s for Gauss-Legendre.
+/// Nurkanovic et al. 2024 Sec. 4.4: FESD recovers the order the scheme has on smooth ODE: 2 n_s - 1
+/// for Radau-IIA, 2 n_s for Gauss-Legendre.
 TEST_P(SpiralFesdOrder, MatchesTheSchemesSmoothOrder) {
   const OrderCase& c = GetParam();
   const int expected = fesd::makeTableau(c.family, c.stages).order();
@@ -88,8 +89,8 @@ TEST(SpiralStandardOrder, RadauIIAWithTwoStagesIsFirstOrder) {
   EXPECT_LT(order, 1.5);
 }
 
-/// Seed 001 Sec. 4.6: from forward simulations of several initial values as guesses, FESD
-/// (Gauss-Legendre, n_s = 2, 25 elements, homotopy) finds the analytic optimum of OCP (56).
+/// Nurkanovic et al. 2024 Sec. 4.6: from forward simulations of several initial values as guesses,
+/// FESD (Gauss-Legendre, n_s = 2, 25 elements, homotopy) finds the analytic optimum of OCP (56).
 TEST(SignOcp, FesdFindsTheAnalyticOptimumFromSeveralGuesses) {
   namespace example = fesd::sign_example;
   for (double guess : {-2.5, -1.5, -0.5}) {
@@ -130,7 +131,7 @@ std::set<int> slidingSubsystems(const fesd::ElementValues& element) {
   return sliding;
 }
 
-/// Seed 001 Sec. 5.3: OCP (61), Radau-IIA n_s = 2, 6 intervals of 6 elements.
+/// Nurkanovic et al. 2024 Sec. 5.3: OCP (61), Radau-IIA n_s = 2, 6 intervals of 6 elements.
 TEST(SlidingOcp, SlidesOnASurfaceThenTheManifoldAndEqualisesSteps) {
   fesd::OcpOptions options;
   options.discretization.num_stages = 2;

@@ -1,4 +1,4 @@
-#include "hard_cases.h"
+#include "support/hard_cases.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,5 +1,5 @@
 // The OCP layer: an LQ problem against its Riccati solution, and the collaborative manipulation
-// showcase of seed 000 Sec. IV-B with FESD and with the standard method.
+// showcase of Pozharskiy et al. 2024 Sec. IV-B with FESD and with the standard method.
 #include <cmath>
 #include <cstdlib>
 

@@ -11,6 +11,9 @@
 
 namespace fesd_test {
 
+/// The bound of the derivative tests on the relative errors below (Jacobians and Hessians).
+constexpr double kTolerance = 1e-6;
+
 /// Dense matrix from a sparsity pattern and its values; `symmetric` mirrors a lower triangle.
 Eigen::MatrixXd densify(const fesd::SparsityPattern& pattern, const std::vector<double>& values,
                         int rows, int cols, bool symmetric = false);

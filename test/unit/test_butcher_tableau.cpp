@@ -1,3 +1,5 @@
+// The Butcher tableaus (discretization/butcher_tableau.cpp): Radau-IIA and Gauss-Legendre
+// against their closed forms, the order conditions B(p) and C(s), and refused stage counts.
 #include <cmath>
 
 #include <gtest/gtest.h>

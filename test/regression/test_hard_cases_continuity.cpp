@@ -1,5 +1,5 @@
-// Hard case 9, continuity under perturbation: the PDS analogue of seed 001, Example 5, where
-// the FESD solution map is continuous in x0 except where a switch appears or disappears.
+// Hard case 9, continuity under perturbation: the PDS analogue of Nurkanovic et al. 2024, Example
+// 5, where the FESD solution map is continuous in x0 except where a switch appears or disappears.
 // xdot = -(1 + x^2) + lambda, 0 <= x _|_ lambda >= 0, one FESD step over T = 0.2 with N_FE = 2,
 // Radau-IIA n_s = 2 (order 3, as in the paper). Exact: x(t) = tan(atan(x0) - t) until the
 // contact at t_c = atan(x0), then x = 0. A contact happens within T for x0 < x0* = tan(T):
@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "fesd_trajopt/model/autodiff_model.h"
-#include "hard_cases.h"
+#include "support/hard_cases.h"
 
 namespace {
 

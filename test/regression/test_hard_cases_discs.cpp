@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "hard_cases.h"
+#include "support/hard_cases.h"
 
 namespace {
 
@@ -44,8 +44,8 @@ TEST(HardCaseDisc, SlidesAroundTheDiscAndReleasesAtTheTop) {
     const Eigen::Vector2d p = slide.stage_states.col(0);
     EXPECT_NEAR(slide.stage_multipliers(0, 0), -p(0) / (2.0 * p.norm()), 1e-3);
   }
-  // Radau-IIA, n_s = 2: order 2 n_s - 1 = 3 for states and switch times (seed 001, Thm. 17);
-  // measured 2.6e-5 -> 2.9e-6 (3.2) and 6.4e-4 -> 3.3e-5 (4.3).
+  // Radau-IIA, n_s = 2: order 2 n_s - 1 = 3 for states and switch times (Nurkanovic et al. 2024,
+  // Thm. 17); measured 2.6e-5 -> 2.9e-6 (3.2) and 6.4e-4 -> 3.3e-5 (4.3).
   EXPECT_LT(coarse.grid_error, 5e-5);
   EXPECT_LT(coarse.release_time_error, 1e-3);
   EXPECT_GT(std::log2(coarse.grid_error / fine.grid_error), 2.7);

@@ -1,5 +1,5 @@
-// Seed 000, Example 1 with the FESD integrator: accuracy, exact switch detection, convergence
-// orders of FESD and the standard method, and step equilibration.
+// Pozharskiy et al. 2024, Example 1 with the FESD integrator: accuracy, exact switch detection,
+// convergence orders of FESD and the standard method, and step equilibration.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -86,7 +86,7 @@ double observedOrder(int stages, const std::vector<int>& totals, bool fesd_on) {
 }
 
 TEST(CircleExample, FesdRecoversTheRadauOrder) {
-  // Order 2 n_s - 1 (seed 000, Sec. IV-A); the test allows 0.3 below it.
+  // Order 2 n_s - 1 (Pozharskiy et al. 2024, Sec. IV-A); the test allows 0.3 below it.
   EXPECT_GE(observedOrder(1, {20, 40, 80, 140}, true), 2 * 1 - 1.3);
   EXPECT_GE(observedOrder(2, {10, 20, 40, 80}, true), 2 * 2 - 1.3);
   EXPECT_GE(observedOrder(3, {10, 20, 40}, true), 2 * 3 - 1.3);

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "hard_cases.h"
+#include "support/hard_cases.h"
 
 namespace {
 

@@ -5,22 +5,11 @@
 #include <gtest/gtest.h>
 
 #include "fesd_trajopt/scene/scene_solver.h"
+#include "support/scene_tasks.h"
 
 namespace {
 
-/// A pusher at (-3, 0), a puck at the origin (both R = 0.5) and a rock (R = 1) at (100, 100)
-/// that nothing reaches in T = 2 at speed 2.
-fesd::SceneTask pushingTask() {
-  fesd::SceneTask task;
-  task.scene.bodies() = {{"pusher", 0.5, Eigen::Vector2d(-3.0, 0.0), true},
-                         {"puck", 0.5, Eigen::Vector2d(0.0, 0.0), false},
-                         {"rock", 1.0, Eigen::Vector2d(100.0, 100.0), false}};
-  task.bodies.resize(3);
-  task.bodies[0].max_speed = 2.0;
-  task.horizon = 2.0;
-  task.num_intervals = 4;
-  return task;
-}
+using fesd_test::pushingTask;
 
 fesd::SimulationOptions twoElements() {
   fesd::SimulationOptions options;

@@ -7,12 +7,12 @@
 
 #include <gtest/gtest.h>
 
-#include "corner_mpcc.h"
 #include "fesd_trajopt/examples/circle_example.h"
 #include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
 #include "fesd_trajopt/scene/scene_task.h"
+#include "support/corner_mpcc.h"
 
 namespace {
 

@@ -12,8 +12,9 @@
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/scene/disc_scene.h"
 
-/// Shared tools of the numerical hard-case tests (test_hard_cases_*.cpp): small models, a
-/// simulation run twice to check determinism, and the checks every case makes.
+/// Shared tools of the numerical hard-case tests (regression/test_hard_cases_*.cpp) and the
+/// push-scene sweep: small models, a simulation run twice to check determinism, and the checks
+/// every case makes.
 namespace hard_cases {
 
 /// FESD with Radau-IIA: `stages` per element, `elements` per simulation step, step bound gamma_h.
@@ -76,7 +77,8 @@ CheckedRun simulateTwice(std::shared_ptr<const fesd::DcsModel> model,
 /// Records a number for the test report (XML output) with three significant digits.
 void recordNumber(const std::string& key, double value);
 
-/// Largest |x_n - x(t_n)| over the element boundaries t_n of a trajectory (seed 001, eq. 40b).
+/// Largest |x_n - x(t_n)| over the element boundaries t_n of a trajectory (Nurkanovic et al. 2024,
+/// eq. 40b).
 double maxGridError(const fesd::Trajectory& trajectory,
                     const std::function<Eigen::VectorXd(double)>& exact);
 

@@ -1,4 +1,4 @@
-#include "finite_differences.h"
+#include "support/finite_differences.h"
 
 #include <algorithm>
 

@@ -4,9 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/discretization/butcher_tableau.h"
 #include "fesd_trajopt/examples/circle_example.h"
-#include "fesd_trajopt/function/affine_function.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
 
@@ -14,8 +12,9 @@ namespace {
 
 namespace example = fesd::circle_example;
 
-/// Seed 000 Example 1 as an OCP without controls on a single control interval, which then has
-/// to hold both switches (contact at 5 pi / 12, release sqrt 3 later) in `elements` elements.
+/// Pozharskiy et al. 2024 Example 1 as an OCP without controls on a single control interval, which
+/// then has to hold both switches (contact at 5 pi / 12, release sqrt 3 later) in `elements`
+/// elements.
 fesd::OcpSolution solveCircleInOneInterval(int elements, bool fesd_on) {
   fesd::OcpDefinition ocp;
   ocp.model = example::model();
@@ -91,36 +90,6 @@ TEST(UnresolvedSwitches, EnoughElementsResolveBothSwitchesAndAreNotFlagged) {
   ASSERT_EQ(fine.status, fesd::SolveStatus::kSuccess) << fine.message;
   EXPECT_LT(terminalError(fine.trajectory), 1e-8);
   EXPECT_TRUE(fine.trajectory.switchesResolved()) << fine.message;
-}
-
-TEST(UnresolvedSwitches, LowestDistanceAlongThePolynomialIsExactForAParabola) {
-  // c = x2 + 1 (|grad c| = 1) along x2(tau) = (tau - 0.6)^2 - 1.2 through Radau-IIA(2)'s nodes
-  // 1/3 and 1: the lowest point, -0.2 at tau = 0.6, is one of the samples (1/3 + 2/3 * 2/5).
-  const fesd::ButcherTableau radau = fesd::makeTableau(fesd::CollocationFamily::kRadauIIA, 2);
-  auto x2 = [](double tau) { return (tau - 0.6) * (tau - 0.6) - 1.2; };
-  Eigen::SparseMatrix<double> second(1, 2);
-  second.insert(0, 1) = 1.0;
-  const fesd::AffineFunction constraint(second, Eigen::VectorXd::Ones(1));
-  Eigen::MatrixXd stages(2, 2);
-  stages << 0.0, 0.0, x2(radau.c(0)), x2(radau.c(1));
-  const Eigen::VectorXd lowest = fesd::lowestConstraintBetweenStages(
-      constraint, radau.c, Eigen::Vector2d(0.0, x2(0.0)), stages);
-  EXPECT_NEAR(lowest(0), -0.2, 1e-12);
-
-  fesd::ElementValues element{
-      0,     0.0, 1.0, stages, Eigen::MatrixXd::Zero(1, 2), Eigen::MatrixXd::Constant(1, 2, 0.5),
-      lowest};
-  const std::vector<fesd::UnresolvedSwitch> found = fesd::findUnresolvedSwitches({element});
-  ASSERT_EQ(found.size(), 1u);
-  EXPECT_TRUE(found[0].passes_through);
-  element.lowest_constraints(0) = -0.01;  // within the tolerance
-  EXPECT_TRUE(fesd::findUnresolvedSwitches({element}).empty());
-  element.stage_multipliers(0, 1) = 2.0;  // apart at stage 1, in contact at stage 2
-  element.stage_constraints(0, 1) = 0.0;
-  ASSERT_EQ(fesd::findUnresolvedSwitches({element}).size(), 1u);
-  EXPECT_FALSE(fesd::findUnresolvedSwitches({element})[0].passes_through);
-  element.stage_constraints(0, 0) = 1e-7;  // weakly active: both sides negligible
-  EXPECT_TRUE(fesd::findUnresolvedSwitches({element}).empty());
 }
 
 }  // namespace

@@ -1,10 +1,39 @@
-// Active-set polishing (NlpAssembly::fixActiveSet) when a complementarity side holds fixed data,
-// as c and lambda at a simulation step's start point do: such a side cannot be made zero.
+// NlpAssembly's active-set tools (nlp/nlp_assembly.cpp): biactiveDescent at a wrongly fixed
+// side, and active-set polishing (fixActiveSet) when a complementarity side holds fixed data, as
+// c and lambda at a simulation step's start point do: such a side cannot be made zero.
+#include <stdexcept>
+#include <vector>
+
 #include <gtest/gtest.h>
 
+#include "fesd_trajopt/function/quadratic_function.h"
 #include "fesd_trajopt/nlp/nlp_assembly.h"
 
 namespace {
+
+/// min (x - 1)^2 + (y + 1)^2  s.t.  0 <= x _|_ y >= 0: the minimiser is (1, 0). Fixing the wrong
+/// side, x = 0, leaves y = 0 as well: a biactive point where raising x descends along
+/// -df/dx = 2, which is |grad f|_inf there.
+TEST(NlpAssembly, BiactiveDescentDetectsTheWrongFixedSide) {
+  fesd::NlpAssembly nlp;
+  const int x = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+  const int y = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+  nlp.addFunctionTerm(fesd::QuadraticFunction::weightedDistance(Eigen::Vector2d::Ones(),
+                                                                Eigen::Vector2d(1.0, -1.0)),
+                      {x, y}, -1, {{fesd::NlpAssembly::kObjective, 1.0}});
+  nlp.addComplementarity({{x, 1.0}}, {{y, 1.0}});
+  nlp.finalize();
+  const std::vector<double> origin{0.0, 0.0}, no_multipliers(nlp.numConstraints(), 0.0);
+  const std::vector<double> x_smaller{1e-3, 1e-2}, y_smaller{1e-2, 1e-3};
+  ASSERT_TRUE(nlp.fixActiveSet(x_smaller.data()));
+  EXPECT_DOUBLE_EQ(nlp.biactiveDescent(origin.data(), no_multipliers.data()), 1.0);
+  nlp.releaseActiveSet();
+  ASSERT_TRUE(nlp.fixActiveSet(y_smaller.data()));
+  const std::vector<double> minimiser{1.0, 0.0};
+  EXPECT_DOUBLE_EQ(nlp.biactiveDescent(minimiser.data(), no_multipliers.data()), 0.0);
+  nlp.releaseActiveSet();
+  EXPECT_THROW(nlp.biactiveDescent(minimiser.data(), no_multipliers.data()), std::logic_error);
+}
 
 constexpr double kInf = fesd::NlpAssembly::kInfinity;
 

@@ -1,0 +1,30 @@
+#include "support/scene_tasks.h"
+
+namespace fesd_test {
+
+fesd::SceneTask pushingTask() {
+  fesd::SceneTask task;
+  task.scene.bodies() = {{"pusher", 0.5, Eigen::Vector2d(-3.0, 0.0), true},
+                         {"puck", 0.5, Eigen::Vector2d(0.0, 0.0), false},
+                         {"rock", 1.0, Eigen::Vector2d(100.0, 100.0), false}};
+  task.bodies.resize(3);
+  task.bodies[0].max_speed = 2.0;
+  task.horizon = 2.0;
+  task.num_intervals = 4;
+  return task;
+}
+
+fesd::SceneTask pushingTaskWithPost() {
+  fesd::SceneTask task = pushingTask();
+  task.scene.obstacles() = {{"post", 0.4, Eigen::Vector2d(0.0, 3.0)}};
+  return task;
+}
+
+fesd::SceneTask slowPushingTask() {
+  fesd::SceneTask task = pushingTask();
+  task.scene.bodies()[2] = {"rock", 0.5, Eigen::Vector2d(50.0, 0.0), false};
+  task.bodies[0].max_speed = 1.0;
+  return task;
+}
+
+}  // namespace fesd_test

@@ -1,0 +1,19 @@
+#pragma once
+
+#include "fesd_trajopt/scene/scene_task.h"
+
+/// Small pushing tasks shared by the scene tests.
+namespace fesd_test {
+
+/// A pusher at (-3, 0), a puck at the origin (both R = 0.5) and a rock (R = 1) at (100, 100)
+/// that nothing reaches in T = 2 at speed 2.
+fesd::SceneTask pushingTask();
+
+/// pushingTask with a post (R = 0.4) at (0, 3), which the pusher and the puck can reach.
+fesd::SceneTask pushingTaskWithPost();
+
+/// A pusher (R = 0.5) at (-3, 0) with |u| <= 1 per coordinate, a puck at the origin, T = 2:
+/// both can get at most D = T sqrt(2) = 2.83 from their starts. A rock (R = 0.5) at (50, 0).
+fesd::SceneTask slowPushingTask();
+
+}  // namespace fesd_test

@@ -1,0 +1,97 @@
+// PdsDiscretization (discretization/pds_discretization.cpp): the NLP's Jacobian and Lagrangian
+// Hessian against central finite differences in every formulation, and the NLP's sizes.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "fesd_trajopt/discretization/pds_discretization.h"
+#include "fesd_trajopt/model/autodiff_model.h"
+#include "support/bead_model.h"
+#include "support/finite_differences.h"
+
+namespace {
+
+using fesd_test::beadModel;
+using fesd_test::kTolerance;
+
+/// A full OCP on the nonlinear model: every kind of NLP piece is present.
+fesd::OcpDefinition beadOcp() {
+  fesd::OcpDefinition ocp;
+  ocp.model = beadModel();
+  ocp.initial_state = Eigen::Vector3d(0.3, 0.2, 0.1);
+  ocp.horizon = 1.5;
+  ocp.num_intervals = 2;
+  ocp.control_lower = Eigen::Vector2d(-2.0, -2.0);
+  ocp.control_upper = Eigen::Vector2d(2.0, 2.0);
+  ocp.lagrange_cost = fesd::makeAutoDiffFunction(5, 1, [](const auto* z, auto* y) {
+    using std::sin;
+    y[0] = z[0] * z[0] * z[3] * z[3] + sin(z[1]) * z[4];
+  });
+  ocp.mayer_cost = fesd::makeAutoDiffFunction(3, 1, [](const auto* x, auto* y) {
+    using std::exp;
+    y[0] = exp(x[0] * x[2]);
+  });
+  ocp.path_constraints = fesd::makeAutoDiffFunction(5, 2, [](const auto* z, auto* g) {
+    g[0] = z[0] + z[3] * z[3];
+    g[1] = z[1] * z[4] - 1.0;
+  });
+  ocp.terminal_constraints = fesd::makeAutoDiffFunction(
+      3, 1, [](const auto* x, auto* g) { g[0] = x[0] * x[0] + x[2] - 2.0; });
+  return ocp;
+}
+
+struct NlpCase {
+  bool switch_detection;
+  fesd::CrossComplementarity cross;
+  int stages;
+  fesd::PdsStepEquilibration equilibration = fesd::PdsStepEquilibration::kPolishing;
+};
+
+class NlpDerivatives : public ::testing::TestWithParam<NlpCase> {};
+
+TEST_P(NlpDerivatives, JacobianAndLagrangianHessianAgainstFiniteDifferences) {
+  fesd::DiscretizationOptions options;
+  options.num_stages = GetParam().stages;
+  options.num_elements = 3;
+  options.switch_detection = GetParam().switch_detection;
+  options.cross_complementarity = GetParam().cross;
+  options.pds.step_equilibration = GetParam().equilibration;
+  fesd::PdsDiscretization discretization(beadOcp(), options);
+  const auto errors = fesd_test::checkRelaxedNlpAtRandomPoints(discretization.nlp(), 3, 17);
+  EXPECT_LT(errors.jacobian, kTolerance);
+  EXPECT_LT(errors.hessian, kTolerance);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Formulations, NlpDerivatives,
+    ::testing::Values(NlpCase{true, fesd::CrossComplementarity::kElementSums, 2},
+                      NlpCase{true, fesd::CrossComplementarity::kStagePairs, 2},
+                      NlpCase{true, fesd::CrossComplementarity::kElementSums, 3},
+                      NlpCase{true, fesd::CrossComplementarity::kElementSums, 2,
+                              fesd::PdsStepEquilibration::kBigM},
+                      NlpCase{false, fesd::CrossComplementarity::kElementSums, 2}));
+
+TEST(NlpStructure, StandardMethodHasNoCrossComplementarityOrEquilibration) {
+  fesd::DiscretizationOptions fesd_options, standard_options;
+  fesd_options.num_stages = standard_options.num_stages = 2;
+  fesd_options.num_elements = standard_options.num_elements = 3;
+  standard_options.switch_detection = false;
+  fesd::DiscretizationOptions big_m_options = fesd_options;
+  big_m_options.pds.step_equilibration = fesd::PdsStepEquilibration::kBigM;
+  fesd::PdsDiscretization with(beadOcp(), fesd_options), without(beadOcp(), standard_options),
+      big_m(beadOcp(), big_m_options);
+  // Standard: one pair per stage and constraint. FESD: one product of sums per element and
+  // constraint; with the paper's big-M equilibration also two max-KKT pairs per inner boundary
+  // and constraint, and 8 auxiliaries per boundary and constraint plus one OR per boundary.
+  const int elements = 6, stages = 2, constraints = 2, boundaries = 2 * 2;
+  EXPECT_EQ(without.nlp().numComplementarities(), elements * stages * constraints);
+  EXPECT_EQ(with.nlp().numComplementarities(), elements * constraints);
+  EXPECT_EQ(big_m.nlp().numComplementarities(),
+            elements * constraints + 2 * boundaries * constraints);
+  EXPECT_EQ(big_m.nlp().numVariables() - with.nlp().numVariables(),
+            boundaries * (8 * constraints + 1));
+  EXPECT_FALSE(without.stepsAreFree());
+  EXPECT_TRUE(with.stepsAreFree());
+}
+
+}  // namespace
