@@ -1,4 +1,4 @@
-// Issue 6 case 6: contact chains. A push that propagates through three discs in a line against
+// Contact chains. A push that propagates through three discs in a line against
 // its analytic solution, and a twelve-disc scene in which pruning leaves only the chain.
 #include <map>
 

@@ -1,4 +1,4 @@
-// Issue 6 case 10: an OCP whose terminal constraint cannot be reached ends with a non-success
+// An OCP whose terminal constraint cannot be reached ends with a non-success
 // status and a message, never with SUCCESS; with a reachable bound the same structure solves.
 #include <memory>
 #include <vector>

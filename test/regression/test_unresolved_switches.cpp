@@ -1,4 +1,4 @@
-// Issue 6 case 8: more switches in one interval than its elements can hold. Such a solution
+// More switches in one interval than its elements can hold. Such a solution
 // must say so (Trajectory::unresolved_switches, the message); a resolved one must not.
 #include <cmath>
 
