@@ -90,8 +90,9 @@ fesd::PdsStepEquilibration pdsStepEquilibration(const Arguments& args) {
   throw std::invalid_argument("--pds-equilibration takes polishing or big-m");
 }
 
-fesd::SimulationOptions refinementArguments(const Arguments& args, bool refine_by_default) {
+fesd::SimulationOptions steppingArguments(const Arguments& args, bool refine_by_default) {
   fesd::SimulationOptions options;
+  options.active_set_steps = args.integer("active-set", 1) != 0;
   options.refine_elements = args.integer("refine-elements", refine_by_default ? 1 : 0) != 0;
   options.max_element_stretch = args.number("max-element-stretch", options.max_element_stretch);
   return options;

@@ -41,10 +41,10 @@ bool startsFromPlan(const Arguments& args);
 /// --pds-equilibration=polishing|big-m: how a PDS discretisation imposes step equilibration.
 fesd::PdsStepEquilibration pdsStepEquilibration(const Arguments& args);
 
-/// Integrator options with --refine-elements=0|1 and --max-element-stretch applied
-/// (SimulationOptions::refine_elements). The order benches keep the papers' fixed element counts
-/// unless asked, since a refined part would leave the h axis.
-fesd::SimulationOptions refinementArguments(const Arguments& args, bool refine_by_default);
+/// Integrator options with --refine-elements=0|1, --max-element-stretch and --active-set=0|1
+/// applied (SimulationOptions::refine_elements, active_set_steps). The order benches keep the
+/// papers' fixed element counts unless asked, since a refined part would leave the h axis.
+fesd::SimulationOptions steppingArguments(const Arguments& args, bool refine_by_default);
 
 /// Homotopy and Ipopt settings from --sigma0, --kappa, --max-steps, --relaxed-tolerance-factor,
 /// --ipopt-tol,

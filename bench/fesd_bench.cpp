@@ -58,7 +58,8 @@ const std::map<std::string, Command>& commands() {
         "    --totals=16,24,32,48,64,96,128 --elements=2 (per step) --methods=fesd,standard\n"
         "    --kappa=0.01 (homotopy) --equilibration=indicator|tanh|none\n"
         "    --equilibration-relaxation=1e6 (r of |dh/h0 eta| <= r sigma)\n"
-        "    --refine-elements=0 (1: refine stretched elements) --max-element-stretch=1.05"}},
+        "    --refine-elements=0 (1: refine stretched elements) --max-element-stretch=1.05\n"
+        "    --active-set=1 (0: the homotopy for every step)"}},
       {"ocp-filippov",
        {fesd_bench::ocpFilippov,
         "OCP (61) (Nurkanovic et al. 2024), two sliding surfaces: terminal error of a fine "
@@ -74,7 +75,7 @@ const std::map<std::string, Command>& commands() {
         "    error against the closed form or a fine FESD run, outlier grids (error > 100x both\n"
         "    neighbours'), CSV and summary. --first-seed=0 --scenes=24 --stages=1,2,3,4\n"
         "    --steps=4,5,6,8,10,12,16,20,24,32,40 --elements=2 --refine-elements=1\n"
-        "    --max-element-stretch=1.05 --reference-steps=161 --budget=60"}},
+        "    --max-element-stretch=1.05 --reference-steps=161 --budget=60 --active-set=1"}},
       {"sign-ocp",
        {fesd_bench::signOcp,
         "OCP (56) (Nurkanovic et al. 2024): x0 found from forward-simulation guesses, FESD vs "
@@ -91,7 +92,8 @@ const std::map<std::string, Command>& commands() {
         "    homotopy level) --sigma0=1 --kappa=0.01 (homotopy) "
         "--pds-equilibration=polishing|big-m --big-m=1e9\n"
         "    --comp-tol=1e-9 --cross=sums|pairs (cross-complementarity form) --polish=true\n"
-        "    --refine-elements=0 (1: refine stretched elements) --max-element-stretch=1.05"}},
+        "    --refine-elements=0 (1: refine stretched elements) --max-element-stretch=1.05\n"
+        "    --active-set=1 (0: the homotopy for every step)"}},
   };
   return table;
 }

@@ -21,7 +21,7 @@ int orderFilippov(const Arguments& args) {
   const fesd::StepEquilibration equilibration = stepEquilibration(args);
   const double relaxation = args.number("equilibration-relaxation",
                                         defaults.discretization.filippov.equilibration_relaxation);
-  const fesd::SimulationOptions refinement = refinementArguments(args, false);
+  const fesd::SimulationOptions refinement = steppingArguments(args, false);
   args.rejectUnused();
 
   namespace example = fesd::spiral_example;

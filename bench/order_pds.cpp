@@ -68,10 +68,11 @@ int orderPds(const Arguments& args) {
     throw std::invalid_argument("--cross takes sums or pairs");
   }
   const bool polish = args.flag("polish", defaults.homotopy.polish_active_set);
-  const fesd::SimulationOptions refinement = refinementArguments(args, false);
+  const fesd::SimulationOptions refinement = steppingArguments(args, false);
   args.rejectUnused();
 
-  std::cout << "method,scheme,n_s,n_fe_total,h,error,switch_time_error,cpu_s,wall_s,status\n";
+  std::cout << "method,scheme,n_s,n_fe_total,h,error,switch_time_error,cpu_s,wall_s,status,"
+               "ipopt_iterations,predicted_parts,located_parts,homotopy_parts\n";
   const double horizon = fesd::circle_example::horizon();
   for (const std::string& method : methods) {
     if (method != "fesd" && method != "standard") {
@@ -108,7 +109,9 @@ int orderPds(const Arguments& args) {
         std::cout << method << ",radau_iia," << ns << "," << total << "," << horizon / total << ","
                   << error << "," << switchTimeError(best.trajectory.switches) << ","
                   << best.totals.cpu_seconds << "," << best.totals.wall_seconds << ","
-                  << (ok ? "ok" : fesd::statusName(best.status)) << std::endl;
+                  << (ok ? "ok" : fesd::statusName(best.status)) << "," << best.totals.iterations
+                  << "," << best.predicted_parts << "," << best.located_parts << ","
+                  << best.homotopy_parts << std::endl;
         if (profile) printProfile(best);
       }
     }

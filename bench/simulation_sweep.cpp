@@ -19,7 +19,7 @@ int simulationSweep(const Arguments& args) {
   const std::vector<int> stages = args.integers("stages", {1, 2, 3, 4});
   const std::vector<int> grids = args.integers("steps", ps::sweepGrids());
   const int elements = args.integer("elements", 2);
-  const fesd::SimulationOptions refinement = refinementArguments(args, true);
+  const fesd::SimulationOptions refinement = steppingArguments(args, true);
   // 161 = 7 * 23 shares no step boundary with any sweep grid: a reference that steps exactly
   // where a grid does could share that grid's error (measured: a release 3.5e-5 before a
   // common boundary, 5.9e-8 in both).
@@ -30,7 +30,7 @@ int simulationSweep(const Arguments& args) {
   std::printf(
       "seed,dimension,bodies,wall,reference,stages,steps,contact_offset,status,failed_step,"
       "relative_error,ipopt_iterations,retried_steps,split_steps,fixed_step_parts,refined_parts,"
-      "wall_s\n");
+      "wall_s,predicted_parts,located_parts,homotopy_parts\n");
   int runs = 0, failures = 0, outlier_count = 0, reference_failures = 0;
   std::vector<std::string> findings;
   for (int seed = first_seed; seed < first_seed + scenes; ++seed) {
@@ -61,14 +61,15 @@ int simulationSweep(const Arguments& args) {
           findings.push_back("failed: n_s " + std::to_string(n_s) + ", " + std::to_string(steps) +
                              " steps: " + result.message + " (" + scene.describe() + ")");
         }
-        std::printf("%d,%d,%zu,%d,%s,%d,%d,%.4f,%s,%d,%.3e,%d,%d,%d,%d,%d,%.3f\n", seed,
+        std::printf("%d,%d,%zu,%d,%s,%d,%d,%.4f,%s,%d,%.3e,%d,%d,%d,%d,%d,%.3f,%d,%d,%d\n", seed,
                     scene.scene.dimension(), scene.scene.bodies().size(),
                     scene.scene.walls().empty() ? 0 : 1,
                     scene.hasClosedForm() ? "closed_form" : "fine_fesd", n_s, steps,
                     position - static_cast<int>(position), fesd::statusName(result.status).c_str(),
                     ok ? -1 : result.completed_steps, error, result.totals.iterations,
                     result.retried_steps, result.split_steps, result.fixed_step_parts,
-                    result.refined_parts, result.totals.wall_seconds);
+                    result.refined_parts, result.totals.wall_seconds, result.predicted_parts,
+                    result.located_parts, result.homotopy_parts);
         std::fflush(stdout);
       }
       for (const int i : ps::outliers(errors)) {

@@ -56,6 +56,30 @@ Trajectory CollocationDiscretization::extract(const double* x, double start_time
   return trajectory;
 }
 
+std::vector<bool> CollocationDiscretization::activeSetOf(const PairModes& modes) const {
+  if (static_cast<int>(pair_origins_.size()) != nlp_.numComplementarities()) return {};
+  std::vector<bool> left_is_zero;
+  for (const PairOrigin& origin : pair_origins_) {
+    const bool active = modes.at(origin.element).at(origin.pair);
+    left_is_zero.push_back(active == origin.left_is_constraint);
+  }
+  return left_is_zero;
+}
+
+void CollocationDiscretization::switchPair(PairModes& modes, int pair, int boundary,
+                                           bool was_active) const {
+  for (size_t e = boundary; e < modes.size(); ++e) modes[e][pair] = !was_active;
+}
+
+void CollocationDiscretization::addPairComplementarity(int element, int pair,
+                                                       const LinearExpression& left,
+                                                       const LinearExpression& right,
+                                                       bool left_is_constraint, double left_weight,
+                                                       double right_weight) {
+  nlp_.addComplementarity(left, right, left_weight, right_weight);
+  pair_origins_.push_back({element, pair, left_is_constraint});
+}
+
 void CollocationDiscretization::addStartState() {
   start_state_ = nlp_.addVariables(nx_, -kInf, kInf);
 }

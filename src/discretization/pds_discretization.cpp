@@ -95,8 +95,8 @@ void PdsDiscretization::buildComplementarity() {
       const double c_weight = 1.0 / scale, lambda_weight = nominal_step_ * scale;
       if (!steps_free_) {
         for (const StagePoint& point : stages_[e]) {
-          nlp_.addComplementarity({{point.s + k, 1.0}}, {{point.lambda + k, 1.0}}, c_weight,
-                                  lambda_weight);
+          addPairComplementarity(e, k, {{point.s + k, 1.0}}, {{point.lambda + k, 1.0}}, true,
+                                 c_weight, lambda_weight);
         }
         continue;
       }
@@ -114,7 +114,7 @@ void PdsDiscretization::buildComplementarity() {
       if (previous_lambda) lambda_side.push_back({previous.lambda + k, 1.0});
       if (e == 0) lambda_side.push_back({carried_lambda_ + k, 1.0});
       if (options_.cross_complementarity == CrossComplementarity::kElementSums) {
-        nlp_.addComplementarity(c_side, lambda_side, c_weight, lambda_weight);
+        addPairComplementarity(e, k, c_side, lambda_side, true, c_weight, lambda_weight);
         continue;
       }
       for (size_t a = 0; a < c_side.size(); ++a) {
@@ -124,7 +124,8 @@ void PdsDiscretization::buildComplementarity() {
           const bool both_previous =
               a == 0 && (previous_lambda || e == 0) && b + 1 == lambda_side.size();
           if (!both_previous) {
-            nlp_.addComplementarity({c_side[a]}, {lambda_side[b]}, c_weight, lambda_weight);
+            addPairComplementarity(e, k, {c_side[a]}, {lambda_side[b]}, true, c_weight,
+                                   lambda_weight);
           }
         }
       }

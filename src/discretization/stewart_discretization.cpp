@@ -146,7 +146,7 @@ void StewartDiscretization::buildComplementarity() {
     for (int i = 0; i < nf_; ++i) {
       if (!steps_free_) {
         for (const StagePoint& point : element.stages) {
-          nlp_.addComplementarity({{point.theta + i, 1.0}}, {{point.lambda + i, 1.0}});
+          addPairComplementarity(e, i, {{point.theta + i, 1.0}}, {{point.lambda + i, 1.0}}, false);
         }
         continue;
       }
@@ -156,11 +156,13 @@ void StewartDiscretization::buildComplementarity() {
       for (const StagePoint& point : element.stages) theta_side.push_back({point.theta + i, 1.0});
       for (int lambda : closureLambdas(e)) lambda_side.push_back({lambda + i, 1.0});
       if (options_.cross_complementarity == CrossComplementarity::kElementSums) {
-        nlp_.addComplementarity(theta_side, lambda_side);
+        addPairComplementarity(e, i, theta_side, lambda_side, false);
         continue;
       }
       for (const LinearTerm& theta : theta_side) {
-        for (const LinearTerm& lambda : lambda_side) nlp_.addComplementarity({theta}, {lambda});
+        for (const LinearTerm& lambda : lambda_side) {
+          addPairComplementarity(e, i, {theta}, {lambda}, false);
+        }
       }
     }
   }
@@ -340,6 +342,17 @@ void StewartDiscretization::readPairValues(const double* x, Trajectory& trajecto
 std::vector<bool> StewartDiscretization::activeAtStart(const double*, const Trajectory& trajectory,
                                                        double tolerance) const {
   return activeAt(trajectory.states.front(), tolerance);
+}
+
+void StewartDiscretization::switchPair(PairModes& modes, int pair, int boundary,
+                                       bool was_active) const {
+  CollocationDiscretization::switchPair(modes, pair, boundary, was_active);
+  if (was_active || boundary >= static_cast<int>(modes.size())) return;
+  const std::vector<bool> before = modes[boundary];
+  for (int i = 0; i < nf_; ++i) {
+    if (i == pair || model_->subsystemOf(i) != model_->subsystemOf(pair) || !before[i]) continue;
+    CollocationDiscretization::switchPair(modes, i, boundary, true);
+  }
 }
 
 std::vector<bool> StewartDiscretization::activeAt(const Eigen::VectorXd& x,

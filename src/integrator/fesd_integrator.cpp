@@ -86,6 +86,7 @@ class FesdIntegrator::Run {
     MpccReport report;
     Trajectory piece;
     bool retried = false;
+    ActiveSetOutcome path = ActiveSetOutcome::kFailed;  ///< kFailed: the homotopy solved it
   };
 
   /// Solves [start_time, start_time + length) under control u from the current state, where
@@ -122,6 +123,9 @@ class FesdIntegrator::Run {
       }
     }
     result.retried_steps += attempt.retried;
+    result.predicted_parts += attempt.path == ActiveSetOutcome::kPredicted;
+    result.located_parts += attempt.path == ActiveSetOutcome::kLocated;
+    result.homotopy_parts += attempt.path == ActiveSetOutcome::kFailed;
     result.totals.accumulate(attempt.report);
     result.step_histories.push_back(attempt.report.history);
     result.trajectory.append(attempt.piece);
@@ -175,6 +179,23 @@ class FesdIntegrator::Run {
             : discretization.translatedGuess(part.previous_solution);
     const RelaxedMpcc& nlp = discretization.nlp();
     Attempt attempt;
+    // Out of time, the homotopy reports the timeout (with its interrupted iterate).
+    if (options_.active_set_steps && remainingBudget() != 0.0 &&
+        (discretization.stepsAreFree() || nlp.numComplementarities() == 0)) {
+      const Trajectory* previous =
+          result.trajectory.elements.empty() ? nullptr : &result.trajectory;
+      const PairModes predicted =
+          predictModes(previous, discretization.activeAt(state_, options_.activity_tolerance),
+                       part.num_elements, options_.homotopy.complementarity_tolerance);
+      ActiveSetStep fast = solveByActiveSets(discretization, guess, predicted,
+                                             options_.homotopy.complementarity_tolerance);
+      result.newton_iterations += fast.newton_iterations;
+      if (fast.outcome != ActiveSetOutcome::kFailed) {
+        attempt.report = std::move(fast.report);
+        attempt.path = fast.outcome;
+        return finishAttempt(part, start_time, std::move(attempt));
+      }
+    }
     attempt.report = solver_.solve(discretization.nlp(), guess, -1.0, remainingBudget());
     if (!exact(attempt.report, nlp) && attempt.report.status != SolveStatus::kTimeout) {
       MpccReport retry = retry_solver_.solve(discretization.nlp(), guess, -1.0, remainingBudget());
@@ -186,10 +207,15 @@ class FesdIntegrator::Run {
         attempt.report.addEffort(retry);
       }
     }
+    return finishAttempt(part, start_time, std::move(attempt));
+  }
+
+  /// Keeps the part's solution for the next guess and reads its trajectory piece.
+  Attempt finishAttempt(Part& part, double start_time, Attempt attempt) {
     part.previous_solution = attempt.report.solution;
     attempt.piece =
-        discretization.extract(attempt.report.solution.data(), start_time,
-                               options_.activity_tolerance, options_.penetration_tolerance);
+        part.discretization->extract(attempt.report.solution.data(), start_time,
+                                     options_.activity_tolerance, options_.penetration_tolerance);
     return attempt;
   }
 
@@ -260,6 +286,11 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
     std::ostringstream message;
     message << "simulated " << num_steps << " step(s): " << result.totals.iterations
             << " Ipopt iterations, " << result.trajectory.switches.size() << " switch(es)";
+    if (options_.active_set_steps) {
+      message << "; parts by active set " << result.predicted_parts << " predicted, "
+              << result.located_parts << " with switches located, " << result.homotopy_parts
+              << " by homotopy (" << result.newton_iterations << " Newton iterations)";
+    }
     if (result.retried_steps > 0) message << ", " << result.retried_steps << " step(s) retried";
     if (result.split_steps > 0) message << ", " << result.split_steps << " step(s) split";
     if (result.refined_parts > 0) {

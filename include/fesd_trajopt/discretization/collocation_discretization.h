@@ -37,6 +37,12 @@ class CollocationDiscretization : public Discretization {
                      double activity_tolerance = kDefaultActivityTolerance,
                      double penetration_tolerance = kDefaultPenetrationTolerance) const override;
 
+  /// The modes' choice of zero sides; empty when the NLP has complementarity pairs that are no
+  /// mode pairs (the big-M step equilibration's auxiliaries).
+  std::vector<bool> activeSetOf(const PairModes& modes) const override;
+  /// The pair alone takes the other mode (the constraints of a PDS are independent).
+  void switchPair(PairModes& modes, int pair, int boundary, bool was_active) const override;
+
   const OcpDefinition& ocp() const { return ocp_; }
   const DiscretizationOptions& options() const { return options_; }
   const ButcherTableau& tableau() const { return tableau_; }
@@ -74,6 +80,11 @@ class CollocationDiscretization : public Discretization {
   /// block_j of `block_size` variables starts at stage_blocks[j] (multipliers or modes).
   void addRungeKuttaRows(int element, const std::shared_ptr<const SmoothFunction>& velocity,
                          const std::vector<int>& stage_blocks, int block_size);
+  /// Adds the complementarity (left^T x)(right^T x) <= sigma of `pair` in `element` and records
+  /// which side is its constraint side, for activeSetOf.
+  void addPairComplementarity(int element, int pair, const LinearExpression& left,
+                              const LinearExpression& right, bool left_is_constraint,
+                              double left_weight = 1.0, double right_weight = 1.0);
   /// The first index of the state an element starts from.
   int elementStartState(int element) const;
   /// The elements whose boundary with the element before lies inside a control interval: there
@@ -103,8 +114,16 @@ class CollocationDiscretization : public Discretization {
   NlpAssembly nlp_;
   int start_state_ = -1;
   CollocationGrid grid_;
-  int core_variables_ =
-      0;  ///< start, controls, steps and element variables: the same in any method
+  /// Start, controls, steps and element variables: the same in any method.
+  int core_variables_ = 0;
+
+ private:
+  /// Where a complementarity pair of the NLP comes from, in the order of the NLP's pairs.
+  struct PairOrigin {
+    int element, pair;
+    bool left_is_constraint;
+  };
+  std::vector<PairOrigin> pair_origins_;
 };
 
 template <class AddElement>

@@ -13,6 +13,11 @@
 
 namespace fesd {
 
+/// Per element and complementarity pair (constraint k of a PDS, mode i of a Filippov system),
+/// whether the pair is active there: its constraint side (c, or Stewart's lambda) zero and its
+/// multiplier side (lambda, or theta) free; inactive: the multiplier side zero.
+using PairModes = std::vector<std::vector<bool>>;
+
 /// A discretisation of an OcpDefinition as a relaxable MPCC, as the integrator and the OCP
 /// solver use it, whatever the model kind: the NLP, guesses, and reading the solution.
 class Discretization {
@@ -53,6 +58,13 @@ class Discretization {
   virtual Trajectory extract(const double* x, double start_time = 0.0,
                              double activity_tolerance = kDefaultActivityTolerance,
                              double penetration_tolerance = kDefaultPenetrationTolerance) const = 0;
+  /// The choice of zero sides (RelaxedMpcc::fixGivenActiveSet) that imposes `modes`: switches
+  /// only where the modes change between elements, at that boundary. Empty when the NLP has
+  /// pairs the modes do not decide.
+  virtual std::vector<bool> activeSetOf(const PairModes& modes) const = 0;
+  /// Switches `pair`, found violating its signs in mode `was_active`, to the other mode from
+  /// element `boundary` on, with whatever else that switch implies for the other pairs.
+  virtual void switchPair(PairModes& modes, int pair, int boundary, bool was_active) const = 0;
   /// Which complementarity pairs are active at a state (the classification of a trajectory's
   /// start for detectSwitches).
   virtual std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const = 0;

@@ -72,6 +72,9 @@ class StewartDiscretization : public CollocationDiscretization {
   std::vector<double> guessFrom(const TrajectoryGuess& guess) const override;
   std::vector<double> translatedGuess(const std::vector<double>& previous_solution) const override;
 
+  /// A mode that becomes active crosses over: the modes active in its subsystem at the boundary
+  /// leave (a crossing, not sliding, which the homotopy finds if this fails).
+  void switchPair(PairModes& modes, int pair, int boundary, bool was_active) const override;
   /// Modes whose indicator is within tolerance of its subsystem's minimum.
   std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const override;
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "fesd_trajopt/discretization/discretization.h"
+#include "fesd_trajopt/integrator/active_set_step.h"
 #include "fesd_trajopt/model/dynamics_model.h"
 #include "fesd_trajopt/solver/mpcc_solver.h"
 
@@ -71,6 +72,10 @@ struct SimulationOptions {
   /// into a step left one element 1.8 times too long, the error 140 times above both
   /// neighbouring grids'). On twice the elements no element exceeds its nominal length.
   double max_element_stretch = 1.05;
+  /// Solve each part first as the smooth square system of its predicted active set, by Newton's
+  /// method, locating switches from violated signs (solveByActiveSets); the homotopy only where
+  /// that finds no exact FESD solution. false: the homotopy for every part, for comparison.
+  bool active_set_steps = true;
 };
 
 struct SimulationResult {
@@ -86,6 +91,10 @@ struct SimulationResult {
   /// The deepest parts that FESD could not solve, integrated with fixed steps instead (their
   /// switches are reported unresolved).
   int fixed_step_parts = 0;
+  /// How the parts kept in the trajectory were solved: their predicted active set held, their
+  /// switches were located by Newton solves, or by the homotopy.
+  int predicted_parts = 0, located_parts = 0, homotopy_parts = 0;
+  int newton_iterations = 0;  ///< over all active-set attempts, kept or not
 };
 
 /// Simulates a nonsmooth system (any DynamicsModel) with FESD: num_steps steps of length horizon /

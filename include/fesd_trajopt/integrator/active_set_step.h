@@ -1,0 +1,45 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fesd_trajopt/discretization/discretization.h"
+#include "fesd_trajopt/solver/mpcc_solver.h"
+
+namespace fesd {
+
+/// How an active-set step ended.
+enum class ActiveSetOutcome {
+  kPredicted,  ///< the predicted modes held: no switch in the step
+  kLocated,    ///< switches placed at element boundaries from the signs the prediction violated
+  kFailed,     ///< no mode sequence tried satisfies every FESD condition: solve by homotopy
+};
+
+struct ActiveSetStep {
+  ActiveSetOutcome outcome = ActiveSetOutcome::kFailed;
+  MpccReport report;  ///< when solved: status success, polished, the solution
+  int newton_iterations = 0;
+  int mode_sequences = 0;  ///< mode sequences tried
+  std::string failure;     ///< why the last one was rejected
+};
+
+/// The modes a step starts with: those at the end of the previous step's last element (active
+/// where the constraint side is zero and the multiplier positive), or, for the first step,
+/// the pairs active at the start state.
+PairModes predictModes(const Trajectory* previous, const std::vector<bool>& active_at_start,
+                       int num_elements, double tolerance);
+
+/// Solves one simulation step (start state and control already set in `discretization`) as the
+/// smooth square system its active set leaves, by Newton's method, with modes constant over
+/// the step as `predicted`; where the result violates a sign (c < 0 for an inactive pair,
+/// lambda < 0 for an active one), the pair switches at the element boundary nearest to where
+/// the sign changed, with the steps free (cross-complementarity), and the system is solved
+/// again, up to `max_sequences` mode sequences. A solution is accepted only if it satisfies
+/// every FESD condition (bounds, rows, complementarity and step equilibration at sigma = 0) to
+/// `tolerance`: it is then the exact solution of the same equations the polished homotopy
+/// solves.
+ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vector<double>& guess,
+                                const PairModes& predicted, double tolerance,
+                                int max_sequences = 4);
+
+}  // namespace fesd

@@ -1,0 +1,109 @@
+// The integrator with active-set steps (the default) against the pure homotopy on the same
+// grids: the same trajectories, and how many parts each path took.
+#include <cmath>
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "fesd_trajopt/examples/circle_example.h"
+#include "fesd_trajopt/examples/filippov_examples.h"
+#include "fesd_trajopt/integrator/fesd_integrator.h"
+#include "fesd_trajopt/scene/push_scenes.h"
+
+namespace {
+
+struct BothPaths {
+  fesd::SimulationResult active_set, homotopy;
+};
+
+BothPaths simulateBoth(std::shared_ptr<const fesd::DynamicsModel> model, const Eigen::VectorXd& x0,
+                       double horizon, int steps, fesd::SimulationOptions options,
+                       const std::vector<Eigen::VectorXd>& controls = {}) {
+  BothPaths runs;
+  options.active_set_steps = true;
+  runs.active_set = fesd::FesdIntegrator(model, options).simulate(x0, horizon, steps, controls);
+  options.active_set_steps = false;
+  runs.homotopy = fesd::FesdIntegrator(model, options).simulate(x0, horizon, steps, controls);
+  return runs;
+}
+
+/// Same element times, boundary states and switches, to `tolerance` (the polishing solve's Ipopt
+/// tolerance, 1e-10, leaves the homotopy's solution ~1e-9 from the exact one Newton finds). Where
+/// one path split or refined a step the other solved whole, the grids differ: then the end
+/// states agree, and the switches to 1e-6.
+void expectSameTrajectories(const BothPaths& runs, double tolerance) {
+  ASSERT_EQ(runs.active_set.status, fesd::SolveStatus::kSuccess) << runs.active_set.message;
+  ASSERT_EQ(runs.homotopy.status, fesd::SolveStatus::kSuccess) << runs.homotopy.message;
+  const fesd::Trajectory& a = runs.active_set.trajectory;
+  const fesd::Trajectory& b = runs.homotopy.trajectory;
+  std::printf("grids %zu / %zu elements, end states %.2e apart\n", a.elements.size(),
+              b.elements.size(), (a.finalState() - b.finalState()).norm());
+  EXPECT_LT((a.finalState() - b.finalState()).lpNorm<Eigen::Infinity>(), tolerance);
+  const bool same_grid = a.times.size() == b.times.size();
+  for (size_t i = 0; same_grid && i < a.times.size(); ++i) {
+    EXPECT_NEAR(a.times[i], b.times[i], tolerance) << "boundary " << i;
+    EXPECT_LT((a.states[i] - b.states[i]).lpNorm<Eigen::Infinity>(), tolerance) << "state " << i;
+  }
+  ASSERT_EQ(a.switches.size(), b.switches.size());
+  for (size_t i = 0; i < a.switches.size(); ++i) {
+    EXPECT_EQ(a.switches[i].kind, b.switches[i].kind);
+    // On other grids the switches are placed to the discretisation's accuracy, not exactly.
+    EXPECT_NEAR(a.switches[i].time, b.switches[i].time, same_grid ? tolerance : 1e-6);
+  }
+  EXPECT_EQ(runs.homotopy.predicted_parts + runs.homotopy.located_parts, 0);
+}
+
+TEST(ActiveSetStepping, ExampleOneMatchesTheHomotopyWithoutAnIpoptIteration) {
+  namespace example = fesd::circle_example;
+  for (const int stages : {2, 3, 4}) {
+    for (const int steps : {5, 10, 20}) {
+      fesd::SimulationOptions options;
+      options.discretization.num_stages = stages;
+      options.refine_elements = false;  // the paper's grid: 2 elements per step
+      const BothPaths runs = simulateBoth(example::model(), example::initialState(),
+                                          example::horizon(), steps, options);
+      SCOPED_TRACE("n_s = " + std::to_string(stages) + ", steps = " + std::to_string(steps));
+      expectSameTrajectories(runs, 1e-8);
+      EXPECT_EQ(runs.active_set.totals.iterations, 0);
+      EXPECT_EQ(runs.active_set.located_parts, 2);  // the contact's step and the release's
+      EXPECT_EQ(runs.active_set.predicted_parts, steps - 2);
+      EXPECT_EQ(runs.active_set.homotopy_parts, 0);
+    }
+  }
+}
+
+TEST(ActiveSetStepping, RandomPushScenesMatchTheHomotopy) {
+  namespace ps = fesd::push_scenes;
+  for (const unsigned seed : {0u, 7u, 12u, 13u}) {
+    const ps::PushScene scene = ps::randomPushScene(seed);
+    for (const int steps : {5, 8, 12}) {
+      fesd::SimulationOptions options;
+      options.discretization.num_stages = 3;
+      const BothPaths runs = simulateBoth(scene.model(), scene.initialState(), scene.horizon, steps,
+                                          options, {scene.velocity});
+      SCOPED_TRACE(scene.describe() + ", steps = " + std::to_string(steps));
+      expectSameTrajectories(runs, 1e-8);
+      EXPECT_GT(runs.active_set.predicted_parts + runs.active_set.located_parts, 0);
+      RecordProperty(
+          "homotopy_parts_seed" + std::to_string(seed) + "_steps" + std::to_string(steps),
+          runs.active_set.homotopy_parts);
+    }
+  }
+}
+
+TEST(ActiveSetStepping, FilippovSpiralMatchesTheHomotopyAndPredictsStepsWithoutCrossing) {
+  namespace spiral = fesd::spiral_example;
+  for (const auto family :
+       {fesd::CollocationFamily::kRadauIIA, fesd::CollocationFamily::kGaussLegendre}) {
+    fesd::SimulationOptions options;
+    options.discretization.family = family;
+    options.discretization.num_stages = 2;
+    const BothPaths runs =
+        simulateBoth(spiral::model(), spiral::initialState(), spiral::horizon(), 16, options);
+    expectSameTrajectories(runs, 1e-8);
+    EXPECT_GE(runs.active_set.predicted_parts, 14);  // every step but the crossing's
+    EXPECT_LT(runs.active_set.totals.iterations, runs.homotopy.totals.iterations / 4);
+  }
+}
+
+}  // namespace
