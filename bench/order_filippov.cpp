@@ -26,7 +26,8 @@ int orderFilippov(const Arguments& args) {
 
   namespace example = fesd::spiral_example;
   const double horizon = example::horizon();
-  std::cout << "method,scheme,n_s,n_fe_total,h,error,switch_time_error,cpu_s,wall_s,status\n";
+  std::cout << "method,scheme,n_s,n_fe_total,h,error,switch_time_error,cpu_s,wall_s,status,"
+               "ipopt_iterations,predicted_parts,located_parts,homotopy_parts\n";
   for (const std::string& method : methods) {
     if (method != "fesd" && method != "standard") {
       throw std::invalid_argument("unknown method '" + method + "'");
@@ -60,7 +61,9 @@ int orderFilippov(const Arguments& args) {
           std::cout << method << "," << fesd::makeTableau(family, ns).name() << "," << ns << ","
                     << total << "," << horizon / total << "," << error << "," << switch_error << ","
                     << result.totals.cpu_seconds << "," << result.totals.wall_seconds << ","
-                    << (ok ? "ok" : fesd::statusName(result.status)) << std::endl;
+                    << (ok ? "ok" : fesd::statusName(result.status)) << ","
+                    << result.totals.iterations << "," << result.predicted_parts << ","
+                    << result.located_parts << "," << result.homotopy_parts << std::endl;
         }
       }
     }
