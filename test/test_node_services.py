@@ -7,10 +7,12 @@ import unittest
 
 import rospy
 import rostest
+import tf2_ros
 from fesd_trajopt.msg import BodySpec, BodyTrajectory, ContactPair, Obstacle, SwitchEvent, Wall
 from fesd_trajopt.srv import (Simulate, SimulateRequest, SolveTrajectory,
                               SolveTrajectoryRequest)
 from geometry_msgs.msg import Point, Vector3
+from nav_msgs.msg import Path
 from visualization_msgs.msg import MarkerArray
 
 SUCCESS, INFEASIBLE, TIMEOUT, INVALID_REQUEST = 0, 2, 3, 6
@@ -282,6 +284,28 @@ class NodeServices(unittest.TestCase):
         self.assertGreater(simulated.get(INVALID_REQUEST, 0), 0, simulated)
         after = self.simulate(SimulateRequest(system="circle_example"))
         self.assertEqual(after.status, SUCCESS, after.message)
+
+    def test_every_body_has_a_latched_path_at_the_element_boundaries(self):
+        response = self.solve(small_default())
+        self.assertEqual(response.status, SUCCESS, response.message)
+        solution = response.solution
+        for body in solution.bodies:
+            path = rospy.wait_for_message("/fesd_trajopt/paths/" + body.name, Path, timeout=30.0)
+            self.assertEqual(path.header.frame_id, "world")
+            self.assertEqual(len(path.poses), len(solution.times))
+            stamps = [pose.header.stamp.to_sec() for pose in path.poses]
+            self.assertEqual(stamps, sorted(stamps))
+            self.assertAlmostEqual(stamps[-1] - stamps[0], solution.times[-1] - solution.times[0],
+                                   places=6)
+            self.assertAlmostEqual(path.poses[-1].pose.position.x, body.positions[-1].x, places=9)
+            self.assertAlmostEqual(path.poses[-1].pose.position.y, body.positions[-1].y, places=9)
+
+    def test_the_frame_of_the_markers_exists_in_tf(self):
+        buffer = tf2_ros.Buffer()
+        tf2_ros.TransformListener(buffer)
+        transform = buffer.lookup_transform("world", "world_fesd_trajopt", rospy.Time(0),
+                                            rospy.Duration(10.0))
+        self.assertEqual(transform.transform.rotation.w, 1.0)
 
     def test_markers_arrive_with_the_expected_namespaces(self):
         markers = rospy.wait_for_message("/fesd_trajopt/markers", MarkerArray, timeout=30.0)

@@ -99,6 +99,24 @@ void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& repo
   }
 }
 
+std::vector<nav_msgs::Path> bodyPaths(const fesd_trajopt::Solution& solution) {
+  std::vector<nav_msgs::Path> paths;
+  for (const fesd_trajopt::BodyTrajectory& body : solution.bodies) {
+    nav_msgs::Path path;
+    path.header = solution.header;
+    for (size_t i = 0; i < body.positions.size() && i < solution.times.size(); ++i) {
+      geometry_msgs::PoseStamped pose;
+      pose.header.frame_id = solution.header.frame_id;
+      pose.header.stamp = solution.header.stamp + ros::Duration(solution.times[i]);
+      pose.pose.position = body.positions[i];
+      pose.pose.orientation.w = 1.0;
+      path.poses.push_back(pose);
+    }
+    paths.push_back(path);
+  }
+  return paths;
+}
+
 fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
                                      const std::vector<fesd::PairDecision>& decisions,
                                      const fesd::Trajectory& trajectory,

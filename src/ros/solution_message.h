@@ -2,6 +2,7 @@
 
 #include <fesd_trajopt/Solution.h>
 #include <fesd_trajopt/SolveTrajectory.h>
+#include <nav_msgs/Path.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include "fesd_trajopt/discretization/trajectory.h"
@@ -24,6 +25,10 @@ fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
 /// The parts every solution has: times, steps, full states, statistics.
 void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& report,
                 fesd_trajopt::Solution& solution);
+
+/// One nav_msgs/Path per body of a solution (in its order): the positions at the element
+/// boundaries, stamped with the solution's stamp plus their time, in the solution's frame.
+std::vector<nav_msgs::Path> bodyPaths(const fesd_trajopt::Solution& solution);
 
 /// rviz markers of a scene solution, one namespace per layer (bodies_start, bodies_final,
 /// targets, paths, switch_configurations, switch_labels, obstacles, walls), preceded by a

@@ -1,6 +1,7 @@
 #include "trajopt_node.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <exception>
 
@@ -82,12 +83,29 @@ bool answerCatchingErrors(const char* service, Response& response, Handler handl
   return true;
 }
 
+/// A link name as a graph resource name: other characters become '_', a leading digit gets a
+/// 'b' before it (URDF allows names ROS topics do not).
+std::string topicName(std::string name) {
+  for (char& c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') c = '_';
+  }
+  if (name.empty() || std::isdigit(static_cast<unsigned char>(name[0]))) name = "b" + name;
+  return name;
+}
+
 }  // namespace
 
 TrajoptNode::TrajoptNode(ros::NodeHandle node, ros::NodeHandle private_node)
     : node_(node), private_node_(private_node), config_(loadNodeConfig(private_node)) {
   marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   solution_publisher_ = private_node_.advertise<fesd_trajopt::Solution>("solution", 1, true);
+  // rviz needs its fixed frame in TF: an identity transform to a child frame of this node.
+  geometry_msgs::TransformStamped frame;
+  frame.header.stamp = ros::Time::now();
+  frame.header.frame_id = config_.frame_id;
+  frame.child_frame_id = config_.frame_id + "_fesd_trajopt";
+  frame.transform.rotation.w = 1.0;
+  frame_broadcaster_.sendTransform(frame);
   solve_service_ =
       private_node_.advertiseService("solve_trajectory", &TrajoptNode::solveTrajectory, this);
   simulate_service_ = private_node_.advertiseService("simulate", &TrajoptNode::simulate, this);
@@ -167,6 +185,17 @@ void TrajoptNode::handleSolve(const fesd_trajopt::SolveTrajectory::Request& requ
   std::lock_guard<std::mutex> lock(publish_mutex_);
   solution_publisher_.publish(response.solution);
   marker_publisher_.publish(sceneMarkers(task, response.solution, config_.frame_id));
+  const std::vector<nav_msgs::Path> paths = bodyPaths(response.solution);
+  for (size_t b = 0; b < paths.size(); ++b) {
+    const std::string name = topicName(response.solution.bodies[b].name);
+    auto found = path_publishers_.find(name);
+    if (found == path_publishers_.end()) {
+      found = path_publishers_
+                  .emplace(name, private_node_.advertise<nav_msgs::Path>("paths/" + name, 1, true))
+                  .first;
+    }
+    found->second.publish(paths[b]);
+  }
 }
 
 void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
