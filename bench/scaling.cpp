@@ -49,7 +49,7 @@ void printRun(const char* sweep, int intervals, int bodies, bool pruning,
               const fesd::SceneOutcome& run) {
   const fesd::MpccReport& report = run.report;
   std::printf("%s,%d,%d,%s,%d,%d,%d,%s,%d,%.3f,%.3f\n", sweep, intervals, bodies,
-              pruning ? "on" : "off", run.modelled_pairs, run.sizes.variables,
+              pruning ? "on" : "off", run.modelledPairs(), run.sizes.variables,
               run.sizes.complementarities, fesd::statusName(run.status).c_str(), report.iterations,
               report.cpu_seconds, report.wall_seconds);
   std::fflush(stdout);

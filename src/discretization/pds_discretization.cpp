@@ -37,7 +37,6 @@ PdsDiscretization::PdsDiscretization(OcpDefinition ocp, DiscretizationOptions op
 
 void PdsDiscretization::buildVariables() {
   addStartState();
-  start_.x = start_state_;
   // c(x_start) is data (x_start is fixed): set by setInitialState, without a sign bound, so that
   // a start a rounding error inside the boundary (the end of a previous step) stays feasible.
   start_.s = nlp_.addVariables(nc_, 0.0, 0.0);
@@ -344,7 +343,7 @@ std::vector<double> PdsDiscretization::translatedGuess(
   requireOwnSize(previous_solution, "translatedGuess");
   std::vector<double> x = previous_solution;
   const Eigen::VectorXd shift =
-      ocp_.initial_state - Eigen::Map<const Eigen::VectorXd>(x.data() + start_.x, nx_);
+      ocp_.initial_state - Eigen::Map<const Eigen::VectorXd>(x.data() + start_state_, nx_);
   auto move_point = [&](const StagePoint& point) {
     Eigen::Map<Eigen::VectorXd> state(x.data() + point.x, nx_);
     state += shift;
@@ -353,7 +352,7 @@ std::vector<double> PdsDiscretization::translatedGuess(
   for (const auto& element : stages_) {
     for (const StagePoint& point : element) move_point(point);
   }
-  for (int i = 0; i < nx_; ++i) x[start_.x + i] = nlp_.initialGuess()[start_.x + i];
+  for (int i = 0; i < nx_; ++i) x[start_state_ + i] = nlp_.initialGuess()[start_state_ + i];
   for (int k = 0; k < nc_; ++k) {
     x[start_.s + k] = nlp_.initialGuess()[start_.s + k];
     x[start_.lambda + k] = nlp_.initialGuess()[start_.lambda + k];

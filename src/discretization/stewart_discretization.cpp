@@ -347,7 +347,7 @@ std::vector<bool> StewartDiscretization::activeAtStart(const double*, const Traj
 void StewartDiscretization::switchPair(PairModes& modes, int pair, int boundary,
                                        bool was_active) const {
   CollocationDiscretization::switchPair(modes, pair, boundary, was_active);
-  if (was_active || boundary >= static_cast<int>(modes.size())) return;
+  if (was_active) return;
   const std::vector<bool> before = modes[boundary];
   for (int i = 0; i < nf_; ++i) {
     if (i == pair || model_->subsystemOf(i) != model_->subsystemOf(pair) || !before[i]) continue;

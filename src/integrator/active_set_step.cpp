@@ -81,13 +81,14 @@ PairModes predictModes(const Trajectory* previous, const std::vector<bool>& acti
 }
 
 ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vector<double>& guess,
-                                const PairModes& predicted, double tolerance, int max_sequences) {
+                                const PairModes& predicted, const ActiveSetOptions& options) {
+  const double tolerance = options.tolerance;
   RelaxedMpcc& nlp = discretization.nlp();
   ActiveSetStep step;
   PairModes modes = predicted;
   std::vector<int> switched_at_start;  ///< pairs the last mode change switched at the start
   nlp.setRelaxation(0.0);
-  while (step.mode_sequences < max_sequences) {
+  while (step.mode_sequences < options.max_sequences) {
     ++step.mode_sequences;
     const std::vector<bool> zero_sides = discretization.activeSetOf(modes);
     if (zero_sides.empty() && nlp.numComplementarities() > 0) {
@@ -116,7 +117,8 @@ ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vecto
       step.failure = "Newton: " + newton.failure;
       return step;
     }
-    const Trajectory piece = discretization.extract(x.data());
+    Trajectory piece = discretization.extract(
+        x.data(), options.start_time, options.activity_tolerance, options.penetration_tolerance);
     PairModes next = modes;
     bool signs_hold = true;
     switched_at_start.clear();
@@ -133,6 +135,7 @@ ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vecto
         step.outcome =
             modes == predicted ? ActiveSetOutcome::kPredicted : ActiveSetOutcome::kLocated;
         step.report = solvedReport(nlp, std::move(x));
+        step.piece = std::move(piece);
         return step;
       }
       step.failure = "a bound or row is violated by " + std::to_string(violation);
@@ -144,7 +147,7 @@ ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vecto
     }
     modes = std::move(next);
   }
-  step.failure = "no mode sequence within " + std::to_string(max_sequences) + " tries";
+  step.failure = "no mode sequence within " + std::to_string(options.max_sequences) + " tries";
   return step;
 }
 

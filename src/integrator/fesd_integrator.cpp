@@ -45,10 +45,7 @@ int rank(const MpccReport& report, const RelaxedMpcc& nlp) {
 class FesdIntegrator::Run {
  public:
   Run(const FesdIntegrator& integrator, const Eigen::VectorXd& x0, double step_length)
-      : options_(integrator.options_),
-        solver_(options_.homotopy),
-        retry_solver_(options_.retry_homotopy),
-        state_(x0) {
+      : options_(integrator.options_), state_(x0) {
     step_problem_.model = integrator.model_;
     step_problem_.initial_state = x0;
     step_problem_.horizon = step_length;
@@ -182,23 +179,32 @@ class FesdIntegrator::Run {
     // Out of time, the homotopy reports the timeout (with its interrupted iterate).
     if (options_.active_set_steps && remainingBudget() != 0.0 &&
         (discretization.stepsAreFree() || nlp.numComplementarities() == 0)) {
-      const Trajectory* previous =
-          result.trajectory.elements.empty() ? nullptr : &result.trajectory;
+      const bool first = result.trajectory.elements.empty();
       const PairModes predicted =
-          predictModes(previous, discretization.activeAt(state_, options_.activity_tolerance),
+          predictModes(first ? nullptr : &result.trajectory,
+                       first ? discretization.activeAt(state_, options_.activity_tolerance)
+                             : std::vector<bool>{},
                        part.num_elements, options_.homotopy.complementarity_tolerance);
-      ActiveSetStep fast = solveByActiveSets(discretization, guess, predicted,
-                                             options_.homotopy.complementarity_tolerance);
+      ActiveSetOptions fast_options;
+      fast_options.tolerance = options_.homotopy.complementarity_tolerance;
+      fast_options.start_time = start_time;
+      fast_options.activity_tolerance = options_.activity_tolerance;
+      fast_options.penetration_tolerance = options_.penetration_tolerance;
+      ActiveSetStep fast = solveByActiveSets(discretization, guess, predicted, fast_options);
       result.newton_iterations += fast.newton_iterations;
       if (fast.outcome != ActiveSetOutcome::kFailed) {
         attempt.report = std::move(fast.report);
+        attempt.piece = std::move(fast.piece);
         attempt.path = fast.outcome;
-        return finishAttempt(part, start_time, std::move(attempt));
+        part.previous_solution = attempt.report.solution;
+        return attempt;
       }
     }
-    attempt.report = solver_.solve(discretization.nlp(), guess, -1.0, remainingBudget());
+    attempt.report = homotopy(solver_, options_.homotopy)
+                         .solve(discretization.nlp(), guess, -1.0, remainingBudget());
     if (!exact(attempt.report, nlp) && attempt.report.status != SolveStatus::kTimeout) {
-      MpccReport retry = retry_solver_.solve(discretization.nlp(), guess, -1.0, remainingBudget());
+      MpccReport retry = homotopy(retry_solver_, options_.retry_homotopy)
+                             .solve(discretization.nlp(), guess, -1.0, remainingBudget());
       attempt.retried = rank(retry, nlp) > rank(attempt.report, nlp);
       if (attempt.retried) {
         retry.addEffort(attempt.report);  // both attempts' effort counts
@@ -207,16 +213,18 @@ class FesdIntegrator::Run {
         attempt.report.addEffort(retry);
       }
     }
-    return finishAttempt(part, start_time, std::move(attempt));
-  }
-
-  /// Keeps the part's solution for the next guess and reads its trajectory piece.
-  Attempt finishAttempt(Part& part, double start_time, Attempt attempt) {
     part.previous_solution = attempt.report.solution;
     attempt.piece =
-        part.discretization->extract(attempt.report.solution.data(), start_time,
-                                     options_.activity_tolerance, options_.penetration_tolerance);
+        discretization.extract(attempt.report.solution.data(), start_time,
+                               options_.activity_tolerance, options_.penetration_tolerance);
     return attempt;
+  }
+
+  /// A homotopy solver, built when first needed: building one (an Ipopt application) costs
+  /// ~0.15 ms, more than a whole step solved by its active set.
+  static MpccSolver& homotopy(std::unique_ptr<MpccSolver>& solver, const HomotopyOptions& options) {
+    if (!solver) solver = std::make_unique<MpccSolver>(options);
+    return *solver;
   }
 
   /// The part of that length and kind, built when first needed.
@@ -244,7 +252,7 @@ class FesdIntegrator::Run {
   const SimulationOptions& options_;
   Stopwatch stopwatch_;
   OcpDefinition step_problem_;
-  MpccSolver solver_, retry_solver_;
+  std::unique_ptr<MpccSolver> solver_, retry_solver_;  ///< the homotopy and its retry path
   Eigen::VectorXd state_;
   Eigen::VectorXd previous_control_;  ///< of the last part in the trajectory
   /// By (tenths, middles, kind); a map's references stay valid as parts are added.

@@ -164,8 +164,8 @@ void TrajoptNode::handleSolve(const fesd_trajopt::SolveTrajectory::Request& requ
   if (!outcome.infeasible.empty()) return answerInfeasible(response, outcome.infeasible);
   ROS_INFO_STREAM("fesd_trajopt: solved "
                   << outcome.moving_bodies.size() << " moving of " << task.scene.bodies().size()
-                  << " bodies, " << outcome.modelled_pairs << " modelled / "
-                  << outcome.decisions.size() - outcome.modelled_pairs << " pruned pairs, "
+                  << " bodies, " << outcome.modelledPairs() << " modelled / "
+                  << outcome.decisions.size() - outcome.modelledPairs() << " pruned pairs, "
                   << task.num_intervals << " intervals x " << grid.elements
                   << " elements, n_s = " << grid.stages);
   response.solution = sceneSolution(task, outcome.decisions, outcome.trajectory, outcome.report);

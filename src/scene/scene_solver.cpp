@@ -25,7 +25,6 @@ bool prepare(const SceneTask& task, const TaskLimits& limits, bool check_goals,
 MovingPart movingPartOf(const SceneTask& task, SceneOutcome& outcome) {
   MovingPart part = movingPart(task, outcome.decisions);
   outcome.moving_bodies = part.bodies;
-  outcome.modelled_pairs = static_cast<int>(part.modelled.size());
   return part;
 }
 

@@ -60,6 +60,7 @@ NewtonResult solveSquareSystem(const NlpProblem& nlp, std::vector<double>& x,
   evaluate_residual();
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
   std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::SparseMatrix<double> jacobian(size, size);
   for (; result.iterations < options.max_iterations; ++result.iterations) {
     if (!std::isfinite(result.residual)) {
       result.failure = "the residual is not finite";
@@ -71,9 +72,10 @@ NewtonResult solveSquareSystem(const NlpProblem& nlp, std::vector<double>& x,
       const int i = equation_of[pattern.rows[e]], j = column_of[pattern.cols[e]];
       if (i >= 0 && j >= 0) triplets.emplace_back(i, j, values[e]);
     }
-    Eigen::SparseMatrix<double> jacobian(size, size);
+    // The same entries in every iteration: the ordering and symbolic analysis are done once.
     jacobian.setFromTriplets(triplets.begin(), triplets.end());
-    lu.compute(jacobian);
+    if (result.iterations == 0) lu.analyzePattern(jacobian);
+    lu.factorize(jacobian);
     if (lu.info() != Eigen::Success) {
       result.failure = "singular Jacobian";
       return result;

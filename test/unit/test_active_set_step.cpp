@@ -56,7 +56,8 @@ TEST(ActiveSetStep, AContactIsLocatedAtAnElementBoundaryAsThePolishedHomotopyPla
   fesd::Discretization& discretization = *step.discretization;
   const std::vector<double> guess = discretization.constantGuess();
   const fesd::PairModes free(2, std::vector<bool>{false});
-  const fesd::ActiveSetStep fast = fesd::solveByActiveSets(discretization, guess, free, 1e-9);
+  const fesd::ActiveSetStep fast =
+      fesd::solveByActiveSets(discretization, guess, free, fesd::ActiveSetOptions{});
   ASSERT_EQ(fast.outcome, fesd::ActiveSetOutcome::kLocated) << fast.failure;
   EXPECT_EQ(fast.mode_sequences, 2);
   EXPECT_EQ(fast.report.complementarity_residual, 0.0);
@@ -79,8 +80,9 @@ TEST(ActiveSetStep, ModesThatContradictTheStartAreRefusedForTheHomotopy) {
   ContactStep step;
   // Active from the start, but the start is 0.2 away from the circle: c(x0) > 0 is data.
   const fesd::PairModes touching(2, std::vector<bool>{true});
-  const fesd::ActiveSetStep fast = fesd::solveByActiveSets(
-      *step.discretization, step.discretization->constantGuess(), touching, 1e-9);
+  const fesd::ActiveSetStep fast =
+      fesd::solveByActiveSets(*step.discretization, step.discretization->constantGuess(), touching,
+                              fesd::ActiveSetOptions{});
   EXPECT_EQ(fast.outcome, fesd::ActiveSetOutcome::kFailed);
   EXPECT_NE(fast.failure.find("contradict"), std::string::npos) << fast.failure;
 }

@@ -29,7 +29,7 @@ TEST(SimulateSceneTask, PushesThePuckAsTheProjectionPredictsWhateverTheOcpBounds
   ASSERT_TRUE(outcome.solved()) << outcome.invalid;
   ASSERT_EQ(outcome.status, fesd::SolveStatus::kSuccess) << outcome.message;
   EXPECT_EQ(outcome.moving_bodies, (std::vector<int>{0, 1}));
-  EXPECT_EQ(outcome.modelled_pairs, 1);
+  EXPECT_EQ(outcome.modelledPairs(), 1);
   EXPECT_EQ(outcome.decisions.size(), 3u);
   // Contact at t = 1, then both move at 1 m/s: pusher (0, 0), puck (1, 0); the rock stays.
   Eigen::VectorXd expected(6);
@@ -92,7 +92,7 @@ TEST(SolveSceneTask, PushesThePuckToItsTargetOnlyModellingWhatCanTouch) {
   ASSERT_TRUE(pruned.solved()) << pruned.invalid << pruned.infeasible;
   ASSERT_EQ(pruned.status, fesd::SolveStatus::kSuccess) << pruned.message;
   EXPECT_EQ(pruned.moving_bodies, (std::vector<int>{0, 1}));
-  EXPECT_EQ(pruned.modelled_pairs, 1);
+  EXPECT_EQ(pruned.modelledPairs(), 1);
   const Eigen::VectorXd final_state = pruned.trajectory.finalState();
   ASSERT_EQ(final_state.size(), 6);
   EXPECT_LT((final_state.segment<2>(2) - Eigen::Vector2d(1.0, 0.0)).norm(), 0.05);
@@ -106,7 +106,7 @@ TEST(SolveSceneTask, PushesThePuckToItsTargetOnlyModellingWhatCanTouch) {
   options.verify = false;
   const fesd::SceneOutcome full = fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
   ASSERT_EQ(full.status, fesd::SolveStatus::kSuccess) << full.message;
-  EXPECT_EQ(full.modelled_pairs, 3);
+  EXPECT_EQ(full.modelledPairs(), 3);
   EXPECT_EQ(full.moving_bodies.size(), 3u);
   EXPECT_GT(full.sizes.variables, pruned.sizes.variables);
   EXPECT_FALSE(full.verified);

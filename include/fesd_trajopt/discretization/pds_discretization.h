@@ -96,7 +96,7 @@ class PdsDiscretization : public CollocationDiscretization {
 
   std::shared_ptr<const DcsModel> model_;
   int nc_;
-  StagePoint start_;  ///< x is the grid's start state
+  StagePoint start_;  ///< s and lambda of the start; its x is start_state_
   /// Data: lambda carried over a step boundary for continuity (continueFrom), else 0.
   int carried_lambda_ = -1;
   std::vector<std::vector<StagePoint>> stages_;  ///< per element, per stage

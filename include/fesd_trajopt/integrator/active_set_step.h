@@ -15,9 +15,19 @@ enum class ActiveSetOutcome {
   kFailed,     ///< no mode sequence tried satisfies every FESD condition: solve by homotopy
 };
 
+struct ActiveSetOptions {
+  double tolerance = 1e-9;  ///< for signs, rows, bounds and complementarity
+  int max_sequences = 4;    ///< mode sequences tried before giving up
+  /// How the solution is read (Discretization::extract): the step's start time, tolerances.
+  double start_time = 0.0;
+  double activity_tolerance = kDefaultActivityTolerance;
+  double penetration_tolerance = kDefaultPenetrationTolerance;
+};
+
 struct ActiveSetStep {
   ActiveSetOutcome outcome = ActiveSetOutcome::kFailed;
   MpccReport report;  ///< when solved: status success, polished, the solution
+  Trajectory piece;   ///< when solved: the solution read with the options' times and tolerances
   int newton_iterations = 0;
   int mode_sequences = 0;  ///< mode sequences tried
   std::string failure;     ///< why the last one was rejected
@@ -39,7 +49,6 @@ PairModes predictModes(const Trajectory* previous, const std::vector<bool>& acti
 /// `tolerance`: it is then the exact solution of the same equations the polished homotopy
 /// solves.
 ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vector<double>& guess,
-                                const PairModes& predicted, double tolerance,
-                                int max_sequences = 4);
+                                const PairModes& predicted, const ActiveSetOptions& options);
 
 }  // namespace fesd

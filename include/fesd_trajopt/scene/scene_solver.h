@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <string>
 #include <vector>
@@ -25,7 +26,6 @@ struct SceneOutcome {
   std::string infeasible;  ///< why infeasibility() says the goals cannot be met; "" otherwise
   std::vector<PairDecision> decisions;  ///< every pair of the scene: modelled or why not
   std::vector<int> moving_bodies;       ///< the bodies with states (MovingPart::bodies)
-  int modelled_pairs = 0;
   SolveStatus status = SolveStatus::kSolverError;
   std::string message;
   OcpStart start = OcpStart::kConstant;  ///< the solve's start (not for simulations)
@@ -37,6 +37,10 @@ struct SceneOutcome {
   double verification_error = std::numeric_limits<double>::quiet_NaN();
 
   bool solved() const { return invalid.empty() && infeasible.empty(); }
+  int modelledPairs() const {
+    return static_cast<int>(std::count_if(decisions.begin(), decisions.end(),
+                                          [](const PairDecision& d) { return d.modelled; }));
+  }
 };
 
 struct SceneSolveOptions {
