@@ -15,5 +15,6 @@ int ocpAccuracy(const Arguments& args);
 int scaling(const Arguments& args);
 int homotopyFailures(const Arguments& args);
 int simulationSweep(const Arguments& args);
+int replan(const Arguments& args);
 
 }  // namespace fesd_bench

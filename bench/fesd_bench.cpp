@@ -45,6 +45,12 @@ const std::map<std::string, Command>& commands() {
         "    time, CSV. --intervals=30 --stages=1,2,3,4 --elements=1,2,3,4\n"
         "    --methods=fesd,standard --budget=120 (s per solve) --reference-stages=4\n"
         "    --reference-elements=8 --start=plan|constant (first guess)"}},
+      {"replan",
+       {fesd_bench::replan,
+        "Replanning: the showcase's object target moved --steps times by --step along x, each\n"
+        "    plan warm-started from the last, against a cold solve of the same task, CSV.\n"
+        "    --intervals=40 --elements=3 --steps=10 --step=0.03 --repeat=3 (best of) "
+        "--budget=120"}},
       {"scaling",
        {fesd_bench::scaling,
         "Solve time vs N_ctrl (showcase) and vs bodies (lanes of pusher + puck, pruning on\n"

@@ -12,8 +12,8 @@ import xmlrpc.client
 
 import rosgraph
 import rospy
-from fesd_trajopt.msg import BodySpec
-from fesd_trajopt.srv import SolveTrajectory, SolveTrajectoryRequest
+from fesd_trajopt.msg import BodySpec, PlanRequest
+from fesd_trajopt.srv import SolveTrajectory
 
 NODE = "/fesd_trajopt"
 
@@ -25,19 +25,19 @@ def passive_disc(name, x, y, radius):
 
 
 def default_scene():
-    return SolveTrajectoryRequest()
+    return PlanRequest()
 
 
 def far_body():
     """The default scene and one disc far out of reach: its pairs are pruned."""
-    request = SolveTrajectoryRequest()
+    request = PlanRequest()
     request.bodies = [passive_disc("far_away", 1e4, 1e4, 1.0)]
     return request
 
 
 def ten_discs_out_of_reach():
     """The default scene and seven passive discs beyond the actuators' reach."""
-    request = SolveTrajectoryRequest()
+    request = PlanRequest()
     request.bodies = [passive_disc("rock_%d" % i, 150.0 + 5.0 * i, 0.0, 1.0) for i in range(7)]
     return request
 
@@ -45,7 +45,7 @@ def ten_discs_out_of_reach():
 def ten_discs_in_reach():
     """The default scene and seven passive discs the actuators could reach (no target of
     theirs, off the pushing path): every pair that can touch is modelled."""
-    request = SolveTrajectoryRequest()
+    request = PlanRequest()
     request.bodies = [passive_disc("rock_%d" % i, -12.0 + 4.0 * i, -12.0, 1.0) for i in range(7)]
     return request
 

@@ -8,11 +8,12 @@ import argparse
 import sys
 
 import rospy
-from fesd_trajopt.msg import SwitchEvent
-from fesd_trajopt.srv import SolveTrajectory, SolveTrajectoryRequest
+from fesd_trajopt.msg import PlanRequest, Solution, SwitchEvent
+from fesd_trajopt.srv import SolveTrajectory
 
-STATUS = {0: "SUCCESS", 1: "MAX_ITERATIONS", 2: "INFEASIBLE", 3: "TIMEOUT",
-          4: "COMPLEMENTARITY_NOT_MET", 5: "SOLVER_ERROR", 6: "INVALID_REQUEST"}
+# Status code -> name, from Solution.msg's constants.
+STATUS = {getattr(Solution, name): name for name in dir(Solution)
+          if name.isupper() and isinstance(getattr(Solution, name), int)}
 
 
 def main():
@@ -25,7 +26,7 @@ def main():
     rospy.init_node("fesd_trajopt_demo_client", anonymous=True)
     rospy.wait_for_service(args.service, timeout=60.0)
     solve = rospy.ServiceProxy(args.service, SolveTrajectory)
-    request = SolveTrajectoryRequest()
+    request = PlanRequest()
     if args.intervals:
         request.has_num_intervals, request.num_intervals = True, args.intervals
     if args.elements:

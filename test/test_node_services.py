@@ -8,14 +8,15 @@ import unittest
 import rospy
 import rostest
 import tf2_ros
-from fesd_trajopt.msg import BodySpec, BodyTrajectory, ContactPair, Obstacle, SwitchEvent, Wall
-from fesd_trajopt.srv import (Simulate, SimulateRequest, SolveTrajectory,
-                              SolveTrajectoryRequest)
+from fesd_trajopt.msg import (BodySpec, BodyTrajectory, ContactPair, Obstacle, PlanRequest, Solution,
+                              SwitchEvent, Wall)
+from fesd_trajopt.srv import Simulate, SimulateRequest, SolveTrajectory
 from geometry_msgs.msg import Point, Vector3
 from nav_msgs.msg import Path
 from visualization_msgs.msg import MarkerArray
 
-SUCCESS, INFEASIBLE, TIMEOUT, INVALID_REQUEST = 0, 2, 3, 6
+SUCCESS, INFEASIBLE, TIMEOUT, INVALID_REQUEST = (Solution.SUCCESS, Solution.INFEASIBLE,
+                                            Solution.TIMEOUT, Solution.INVALID_REQUEST)
 SOLVE = "/fesd_trajopt/solve_trajectory"
 SIMULATE = "/fesd_trajopt/simulate"
 
@@ -29,7 +30,7 @@ def body(name, **fields):
 
 def small_default(intervals=10):
     """The default scene on a coarse grid: a quick but complete solve."""
-    request = SolveTrajectoryRequest()
+    request = PlanRequest()
     request.has_num_intervals, request.num_intervals = True, intervals
     request.has_num_elements, request.num_elements = True, 2
     return request
@@ -37,7 +38,7 @@ def small_default(intervals=10):
 
 def three_disc_request(target_x, intervals):
     """The three-disc URDF scene: the pusher drives the puck to (target_x, 0) in 2 s."""
-    request = SolveTrajectoryRequest()
+    request = PlanRequest()
     request.urdf_param = "/three_disc_scene"
     request.bodies = [body("pusher", role=BodySpec.ROLE_ACTUATED, max_speed=3.0),
                       body("puck", target=Point(target_x, 0, 0), target_weight=10.0)]
@@ -57,7 +58,7 @@ def random_request(rng):
         return Point(number(-15, 15), number(-15, 15), number(-1, 1))
 
     names = ["actuator_1", "actuator_2", "object", "extra", ""]
-    request = SolveTrajectoryRequest()
+    request = PlanRequest()
     for _ in range(rng.randint(0, 3)):
         spec = body(rng.choice(names), add=rng.random() < 0.3, radius=number(0.1, 2.0),
                     initial_position=point(), override_initial_position=rng.random() < 0.3,
@@ -79,6 +80,8 @@ def random_request(rng):
     request.has_num_elements, request.num_elements = True, rng.choice([0, 1, 2, 9])
     request.method = rng.choice([0, 1, 2, 7])
     request.has_wall_time_budget, request.wall_time_budget = True, number(0.5, 1.0)
+    request.warm_start = rng.random() < 0.5
+    request.target_accuracy = rng.choice([0.0, 0.0, 1e-3, number(0.0, 1e-2)])
     return request
 
 
@@ -108,7 +111,7 @@ class NodeServices(unittest.TestCase):
         rospy.wait_for_service(SIMULATE, timeout=60.0)
         cls.solve = rospy.ServiceProxy(SOLVE, SolveTrajectory)
         cls.simulate = rospy.ServiceProxy(SIMULATE, Simulate)
-        cls.default = cls.solve(SolveTrajectoryRequest())
+        cls.default = cls.solve(PlanRequest())
 
     def assert_invalid(self, request, keyword):
         response = self.solve(request)
@@ -136,7 +139,7 @@ class NodeServices(unittest.TestCase):
         self.assertEqual(len(response.solution.times), len(response.solution.step_lengths) + 1)
 
     def test_custom_scene_given_in_the_message(self):
-        request = SolveTrajectoryRequest()
+        request = PlanRequest()
         request.urdf = '<robot name="empty"><link name="world"/></robot>'
         request.bodies = [
             body("pusher", add=True, radius=0.5, initial_position=Point(-3, 0, 0),
@@ -186,7 +189,7 @@ class NodeServices(unittest.TestCase):
               body("actuator_2", role=BodySpec.ROLE_PASSIVE)], {}, "actuated"),
         ]
         for bodies, fields, keyword in cases:
-            request = SolveTrajectoryRequest()
+            request = PlanRequest()
             request.bodies = bodies
             for key, value in fields.items():
                 setattr(request, key, value)
@@ -204,7 +207,7 @@ class NodeServices(unittest.TestCase):
              "cannot reach its target"),
         ]
         for bodies, keyword in cases:
-            request = SolveTrajectoryRequest()
+            request = PlanRequest()
             request.bodies = bodies
             response = self.solve(request)
             self.assertEqual(response.status, INFEASIBLE, response.message)
@@ -212,7 +215,7 @@ class NodeServices(unittest.TestCase):
             self.assertIn(keyword, response.message)
 
     def test_a_tiny_wall_time_budget_times_out_with_a_finite_iterate(self):
-        request = SolveTrajectoryRequest()
+        request = PlanRequest()
         request.has_wall_time_budget, request.wall_time_budget = True, 1e-3
         response = self.solve(request)
         self.assertEqual(response.status, TIMEOUT, response.message)
@@ -233,7 +236,7 @@ class NodeServices(unittest.TestCase):
         self.assertTrue(self.default.solution.switches_resolved)
         self.assertEqual(list(self.default.solution.unresolved_elements), [])
         request = small_default(10)
-        request.method = SolveTrajectoryRequest.METHOD_STANDARD  # no switch detection
+        request.method = PlanRequest.METHOD_STANDARD  # no switch detection
         response = self.solve(request)
         self.assertFalse(response.solution.switches_resolved, response.message)
         self.assertIn("unresolved switch", response.message)
@@ -341,7 +344,7 @@ class NodeServices(unittest.TestCase):
                          second.solution.statistics.ipopt_iterations)
 
     def test_a_far_away_body_is_pruned(self):
-        request = SolveTrajectoryRequest()
+        request = PlanRequest()
         request.bodies = [body("far", add=True, radius=1.0, initial_position=Point(1e4, 1e4, 0))]
         response = self.solve(request)
         self.assertEqual(response.status, SUCCESS, response.message)
@@ -360,7 +363,7 @@ class NodeServices(unittest.TestCase):
             self.assertEqual(moving[b.name], b.positions, b.name)
 
     def test_a_scene_where_nothing_can_touch_is_one_smooth_nlp(self):
-        request = SolveTrajectoryRequest()
+        request = PlanRequest()
         request.urdf = '<robot name="empty"><link name="world"/></robot>'
         request.bodies = [
             body("mover", add=True, radius=0.5, role=BodySpec.ROLE_ACTUATED, max_speed=1.0,

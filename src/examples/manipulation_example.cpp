@@ -21,6 +21,12 @@ SceneTask task(int num_intervals) {
   return task;
 }
 
+SceneTask task(int num_intervals, const Eigen::Vector2d& object_goal) {
+  SceneTask moved = task(num_intervals);
+  moved.bodies[2].target = object_goal;
+  return moved;
+}
+
 std::vector<ContactPair> contactPairs() {
   return {{0, ContactPair::Kind::kBody, 2}, {1, ContactPair::Kind::kBody, 2}};
 }

@@ -26,6 +26,14 @@ HomotopyOptions guessHomotopy(const OcpOptions& options) {
   return homotopy;
 }
 
+/// MpccSolver::solve(previous, sigma) starts Ipopt at warm_start_mu_factor * sigma.
+HomotopyOptions previousHomotopy(const OcpOptions& options) {
+  HomotopyOptions homotopy = options.homotopy;
+  homotopy.ipopt.warm_start_mu_factor = options.warm_start_mu / options.warm_start_sigma;
+  homotopy.ipopt.warm_start_bound_push = options.warm_start_bound_push;
+  return homotopy;
+}
+
 }  // namespace
 
 OcpSolver::OcpSolver(OcpDefinition ocp, OcpOptions options)
@@ -33,11 +41,18 @@ OcpSolver::OcpSolver(OcpDefinition ocp, OcpOptions options)
       discretization_(discretize(ocp, options_.discretization)),
       solver_(options_.homotopy),
       fixed_grid_solver_(fixedGridHomotopy(options_)),
-      guess_solver_(guessHomotopy(options_)) {
+      guess_solver_(guessHomotopy(options_)),
+      previous_solver_(previousHomotopy(options_)) {
   if (discretization_->stepsAreFree() && options_.fixed_grid_until_sigma > 0.0) {
     DiscretizationOptions fixed = options_.discretization;
     fixed.switch_detection = false;
     fixed_grid_ = discretize(ocp, fixed);
+  }
+}
+
+void OcpSolver::setMonitor(const SolveMonitor* monitor) {
+  for (MpccSolver* solver : {&solver_, &fixed_grid_solver_, &guess_solver_, &previous_solver_}) {
+    solver->setMonitor(monitor);
   }
 }
 
@@ -51,6 +66,8 @@ std::string startName(OcpStart start, const std::string& guess) {
       return "constant after a failed solve from the " + guess;
     case OcpStart::kPrevious:
       return "previous solution";
+    case OcpStart::kGuessAfterPrevious:
+      return guess + " after a failed warm start";
   }
   return "unknown";
 }
@@ -68,7 +85,7 @@ OcpSolution OcpSolver::solveFromConstant(double wall_time_budget) {
   MpccReport fixed = fixed_grid_solver_.solve(fixed_grid_->nlp(), fixed_grid_->constantGuess(),
                                               -1.0, std::max(0.0, wall_time_budget));
   const double remaining = wall_time_budget - fixed.wall_seconds;
-  if (fixed.status == SolveStatus::kTimeout || fixed.history.empty()) {
+  if (interrupted(fixed.status) || fixed.history.empty()) {
     return finish(std::move(fixed), *fixed_grid_);
   }
   const double sigma = fixed.history.back().sigma * options_.homotopy.sigma_reduction;
@@ -92,31 +109,51 @@ OcpSolution OcpSolver::solve(const OcpSolution& previous) {
   if (static_cast<int>(previous.report.solution.size()) != discretization_->nlp().numVariables()) {
     throw std::invalid_argument("OcpSolver: the warm start comes from a different discretisation");
   }
-  OcpSolution solution =
-      finish(solver_.solve(discretization_->nlp(), previous.report, options_.warm_start_sigma),
-             *discretization_);
+  OcpSolution solution = finish(
+      previous_solver_.solve(discretization_->nlp(), previous.report, options_.warm_start_sigma,
+                             std::max(0.0, options_.homotopy.wall_time_budget)),
+      *discretization_);
   solution.start = OcpStart::kPrevious;
   return solution;
 }
 
 OcpSolution OcpSolver::solve(const TrajectoryGuess& guess) {
+  return solveFromGuess(guess, options_.homotopy.wall_time_budget);
+}
+
+OcpSolution OcpSolver::solveFromGuess(const TrajectoryGuess& guess, double wall_time_budget) {
   OcpSolution from_guess =
       finish(guess_solver_.solve(discretization_->nlp(), discretization_->guessFrom(guess),
-                                 options_.guess_sigma),
+                                 options_.guess_sigma, std::max(0.0, wall_time_budget)),
              *discretization_);
   from_guess.start = OcpStart::kGuess;
-  if (from_guess.status == SolveStatus::kSuccess || from_guess.status == SolveStatus::kTimeout) {
+  if (from_guess.status == SolveStatus::kSuccess || interrupted(from_guess.status)) {
     return from_guess;
   }
   OcpSolution solution =
-      solveFromConstant(options_.homotopy.wall_time_budget - from_guess.report.wall_seconds);
+      after(from_guess, solveFromConstant(wall_time_budget - from_guess.report.wall_seconds));
   solution.start = OcpStart::kConstantAfterGuess;
-  solution.report.history.insert(solution.report.history.begin(), from_guess.report.history.begin(),
-                                 from_guess.report.history.end());
-  solution.report.addEffort(from_guess.report);
   solution.message = "from the guess: " + statusName(from_guess.status) +
                      "; then from the constant start: " + solution.message;
   return solution;
+}
+
+OcpSolution OcpSolver::solve(const OcpSolution& previous, const TrajectoryGuess& fallback) {
+  OcpSolution warm = solve(previous);
+  if (warm.status == SolveStatus::kSuccess || interrupted(warm.status)) return warm;
+  OcpSolution solution = after(warm, solveFromGuess(fallback, options_.homotopy.wall_time_budget -
+                                                                  warm.report.wall_seconds));
+  solution.start = OcpStart::kGuessAfterPrevious;
+  solution.message = "from the previous solution: " + statusName(warm.status) +
+                     "; then from the guess: " + solution.message;
+  return solution;
+}
+
+OcpSolution OcpSolver::after(const OcpSolution& earlier, OcpSolution later) {
+  later.report.history.insert(later.report.history.begin(), earlier.report.history.begin(),
+                              earlier.report.history.end());
+  later.report.addEffort(earlier.report);
+  return later;
 }
 
 OcpSolution OcpSolver::finish(MpccReport report, const Discretization& source) const {

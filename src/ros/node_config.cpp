@@ -74,6 +74,7 @@ NodeConfig loadNodeConfig(const ros::NodeHandle& node) {
   node.param("wall_time_budget", c.wall_time_budget, c.wall_time_budget);
   node.param("verification/num_stages", c.verification_stages, c.verification_stages);
   node.param("verification/num_elements", c.verification_elements, c.verification_elements);
+  node.param("playback_rate", c.playback_rate, c.playback_rate);
   node.param("limits/max_bodies", c.limits.max_bodies, c.limits.max_bodies);
   node.param("limits/max_obstacles", c.limits.max_obstacles, c.limits.max_obstacles);
   node.param("limits/max_walls", c.limits.max_walls, c.limits.max_walls);

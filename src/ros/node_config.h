@@ -32,6 +32,7 @@ struct NodeConfig {
   double wall_time_budget = 120.0;
   int verification_stages = 3;
   int verification_elements = 6;
+  double playback_rate = 1.0;  ///< ~playback at this many times real time; 0: off
   fesd::TaskLimits limits;
   std::map<std::string, BodyConfig> bodies;
   std::string scene_urdf;  ///< ~scene_urdf: the default scene

@@ -43,8 +43,12 @@ std_msgs::ColorRGBA color(double r, double g, double b, double a) {
 
 }  // namespace
 
+std_msgs::ColorRGBA bodyColor(bool actuated, double alpha) {
+  return actuated ? color(0.2, 0.45, 0.85, alpha) : color(0.95, 0.55, 0.1, alpha);
+}
+
 uint8_t statusCode(fesd::SolveStatus status) {
-  using Codes = fesd_trajopt::SolveTrajectory::Response;
+  using Codes = fesd_trajopt::Solution;
   switch (status) {
     case fesd::SolveStatus::kSuccess:
       return Codes::SUCCESS;
@@ -58,6 +62,10 @@ uint8_t statusCode(fesd::SolveStatus status) {
       return Codes::COMPLEMENTARITY_NOT_MET;
     case fesd::SolveStatus::kSolverError:
       return Codes::SOLVER_ERROR;
+    case fesd::SolveStatus::kCancelled:
+      return Codes::CANCELLED;
+    case fesd::SolveStatus::kAccuracyNotMet:
+      return Codes::ACCURACY_NOT_MET;
   }
   return Codes::SOLVER_ERROR;
 }
@@ -192,8 +200,7 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
     markers.markers.push_back(m);
   };
   auto body_color = [&](size_t b, double alpha) {
-    return scene.bodies()[b].actuated ? color(0.2, 0.45, 0.85, alpha)
-                                      : color(0.95, 0.55, 0.1, alpha);
+    return bodyColor(scene.bodies()[b].actuated, alpha);
   };
   for (size_t b = 0; b < solution.bodies.size(); ++b) {
     const fesd_trajopt::BodyTrajectory& body = solution.bodies[b];

@@ -1,7 +1,6 @@
 #pragma once
 
 #include <fesd_trajopt/Solution.h>
-#include <fesd_trajopt/SolveTrajectory.h>
 #include <nav_msgs/Path.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -11,9 +10,9 @@
 
 namespace fesd_ros {
 
-/// The status constant of a solver outcome (Simulate.srv repeats SolveTrajectory.srv's).
+/// The status constant (Solution.msg's) of a solver outcome.
 uint8_t statusCode(fesd::SolveStatus status);
-constexpr uint8_t kInvalidRequest = fesd_trajopt::SolveTrajectory::Response::INVALID_REQUEST;
+constexpr uint8_t kInvalidRequest = fesd_trajopt::Solution::INVALID_REQUEST;
 
 /// The Solution message of a scene trajectory: times, each body's positions and controls, the
 /// full state, switches (named by the modelled pairs), statistics and pair decisions.
@@ -25,6 +24,9 @@ fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
 /// The parts every solution has: times, steps, full states, statistics.
 void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& report,
                 fesd_trajopt::Solution& solution);
+
+/// rviz colour of a body: actuated blue, passive orange.
+std_msgs::ColorRGBA bodyColor(bool actuated, double alpha);
 
 /// One nav_msgs/Path per body of a solution (in its order): the positions at the element
 /// boundaries, stamped with the solution's stamp plus their time, in the solution's frame.

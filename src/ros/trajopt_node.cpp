@@ -15,6 +15,8 @@
 namespace fesd_ros {
 namespace {
 
+constexpr double kPlaybackFramesPerSecond = 25.0;
+
 /// The discretisation of a request: its values where given, else the configuration's.
 struct Discretization {
   int elements, stages;
@@ -96,7 +98,14 @@ std::string topicName(std::string name) {
 }  // namespace
 
 TrajoptNode::TrajoptNode(ros::NodeHandle node, ros::NodeHandle private_node)
-    : node_(node), private_node_(private_node), config_(loadNodeConfig(private_node)) {
+    : node_(node),
+      private_node_(private_node),
+      config_(loadNodeConfig(private_node)),
+      playback_(private_node, config_.playback_rate, kPlaybackFramesPerSecond),
+      plan_server_(
+          private_node,
+          [this](const fesd_trajopt::PlanRequest& request, const fesd::SolveMonitor& monitor,
+                 fesd_trajopt::PlanTrajectoryResult& answer) { plan(request, &monitor, answer); }) {
   marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   solution_publisher_ = private_node_.advertise<fesd_trajopt::Solution>("solution", 1, true);
   // rviz needs its fixed frame in TF: an identity transform to a child frame of this node.
@@ -109,6 +118,7 @@ TrajoptNode::TrajoptNode(ros::NodeHandle node, ros::NodeHandle private_node)
   solve_service_ =
       private_node_.advertiseService("solve_trajectory", &TrajoptNode::solveTrajectory, this);
   simulate_service_ = private_node_.advertiseService("simulate", &TrajoptNode::simulate, this);
+  plan_server_.start();
   ROS_INFO_STREAM("fesd_trajopt: ready ("
                   << config_.bodies.size() << " configured bodies, "
                   << (config_.scene_urdf.empty() ? "no default scene" : "default scene loaded")
@@ -117,8 +127,12 @@ TrajoptNode::TrajoptNode(ros::NodeHandle node, ros::NodeHandle private_node)
 
 bool TrajoptNode::solveTrajectory(fesd_trajopt::SolveTrajectory::Request& request,
                                   fesd_trajopt::SolveTrajectory::Response& response) {
-  return answerCatchingErrors("solve_trajectory", response,
-                              [&] { handleSolve(request, response); });
+  fesd_trajopt::PlanTrajectoryResult answer;
+  plan(request.request, nullptr, answer);
+  response.status = answer.status;
+  response.message = answer.message;
+  response.solution = answer.solution;
+  return true;
 }
 
 bool TrajoptNode::simulate(fesd_trajopt::Simulate::Request& request,
@@ -126,68 +140,111 @@ bool TrajoptNode::simulate(fesd_trajopt::Simulate::Request& request,
   return answerCatchingErrors("simulate", response, [&] { handleSimulate(request, response); });
 }
 
-void TrajoptNode::handleSolve(const fesd_trajopt::SolveTrajectory::Request& request,
-                              fesd_trajopt::SolveTrajectory::Response& response) {
+void TrajoptNode::plan(const fesd_trajopt::PlanRequest& request, const fesd::SolveMonitor* monitor,
+                       fesd_trajopt::PlanTrajectoryResult& answer) {
+  answerCatchingErrors("plan", answer, [&] { handlePlan(request, monitor, answer); });
+}
+
+void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
+                             const fesd::SolveMonitor* monitor,
+                             fesd_trajopt::PlanTrajectoryResult& answer) {
   fesd::Stopwatch stopwatch;
   TaskBuild build = buildTask(config_, sceneFields(request), private_node_);
-  if (!build.error.empty()) return refuse(response, build.error);
+  if (!build.error.empty()) return refuse(answer, build.error);
   fesd::SceneTask& task = build.task;
   if (request.has_horizon) task.horizon = request.horizon;
   if (request.has_num_intervals) task.num_intervals = static_cast<int>(request.num_intervals);
   const Discretization grid = discretization(request, config_);
-  if (!grid.error.empty()) return refuse(response, grid.error);
-  if (request.method > fesd_trajopt::SolveTrajectory::Request::METHOD_STANDARD) {
-    return refuse(response, "unknown method " + std::to_string(request.method));
+  if (!grid.error.empty()) return refuse(answer, grid.error);
+  if (request.method > fesd_trajopt::PlanRequest::METHOD_STANDARD) {
+    return refuse(answer, "unknown method " + std::to_string(request.method));
   }
   const double tolerance = request.has_complementarity_tolerance
                                ? request.complementarity_tolerance
                                : config_.complementarity_tolerance;
   const double budget = wallTimeBudget(request, config_);
   if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {
-    return refuse(response, "the complementarity tolerance must be > 0 and finite");
+    return refuse(answer, "the complementarity tolerance must be > 0 and finite");
   }
-  if (!(budget > 0.0)) return refuse(response, "the wall-time budget must be > 0");
+  if (!(budget > 0.0)) return refuse(answer, "the wall-time budget must be > 0");
+  if (!(request.target_accuracy >= 0.0) || !std::isfinite(request.target_accuracy)) {
+    return refuse(answer, "the target accuracy must be >= 0 (0: off) and finite");
+  }
   fesd::SceneSolveOptions options;
   options.ocp.discretization.num_elements = grid.elements;
   options.ocp.discretization.num_stages = grid.stages;
   options.ocp.discretization.switch_detection =
-      request.method == fesd_trajopt::SolveTrajectory::Request::METHOD_DEFAULT
+      request.method == fesd_trajopt::PlanRequest::METHOD_DEFAULT
           ? config_.fesd
-          : request.method == fesd_trajopt::SolveTrajectory::Request::METHOD_FESD;
+          : request.method == fesd_trajopt::PlanRequest::METHOD_FESD;
   options.ocp.homotopy.complementarity_tolerance = tolerance;
   options.ocp.homotopy.wall_time_budget = budget;
   options.verify = request.verify;
   options.verification.num_stages = config_.verification_stages;
   options.verification.num_elements = config_.verification_elements;
-  const fesd::SceneOutcome outcome = fesd::solveSceneTask(task, config_.limits, options);
-  if (!outcome.invalid.empty()) return refuse(response, outcome.invalid);
-  if (!outcome.infeasible.empty()) return answerInfeasible(response, outcome.infeasible);
+  options.monitor = monitor;
+  std::shared_ptr<const fesd::SceneOutcome> previous;
+  if (request.warm_start) {
+    std::lock_guard<std::mutex> lock(last_solution_mutex_);
+    previous = last_solution_;
+  }
+  options.previous = previous.get();
+  const fesd::SceneOutcome outcome =
+      request.target_accuracy > 0.0
+          ? fesd::solveToAccuracy(task, config_.limits, options, request.target_accuracy)
+          : fesd::solveSceneTask(task, config_.limits, options);
+  if (!outcome.invalid.empty()) return refuse(answer, outcome.invalid);
+  if (!outcome.infeasible.empty()) return answerInfeasible(answer, outcome.infeasible);
   ROS_INFO_STREAM("fesd_trajopt: solved "
                   << outcome.moving_bodies.size() << " moving of " << task.scene.bodies().size()
                   << " bodies, " << outcome.modelledPairs() << " modelled / "
                   << outcome.decisions.size() - outcome.modelledPairs() << " pruned pairs, "
-                  << task.num_intervals << " intervals x " << grid.elements
-                  << " elements, n_s = " << grid.stages);
-  response.solution = sceneSolution(task, outcome.decisions, outcome.trajectory, outcome.report);
-  response.solution.message = outcome.message;  // with the warning on unresolved switches
-  response.solution.statistics.start = fesd::startName(outcome.start, "push plan");
-  response.solution.statistics.nlp_variables = outcome.sizes.variables;
-  response.solution.statistics.nlp_constraints = outcome.sizes.constraints;
-  response.solution.statistics.complementarity_constraints = outcome.sizes.complementarities;
-  response.solution.verified = outcome.verified;
-  if (outcome.verified) response.solution.verification_error = outcome.verification_error;
-  response.solution.header.stamp = ros::Time::now();
-  response.solution.header.frame_id = config_.frame_id;
-  response.solution.statistics.wall_time = stopwatch.wallSeconds();
-  response.solution.statistics.cpu_time = stopwatch.cpuSeconds();
-  finish(response, build.notes);
-  ROS_INFO_STREAM("fesd_trajopt: " << response.message << " (" << stopwatch.wallSeconds() << " s)");
+                  << task.num_intervals << " intervals x " << outcome.structure.elements
+                  << " elements, n_s = " << outcome.structure.stages);
+  fesd_trajopt::Solution& solution = answer.solution;
+  solution = sceneSolution(task, outcome.decisions, outcome.trajectory, outcome.report);
+  solution.status = statusCode(outcome.status);
+  solution.message = outcome.message;  // with the warning on unresolved switches
+  solution.statistics.start = fesd::startName(outcome.start, "push plan");
+  solution.statistics.warm_started = outcome.start == fesd::OcpStart::kPrevious;
+  solution.statistics.nlp_variables = outcome.sizes.variables;
+  solution.statistics.nlp_constraints = outcome.sizes.constraints;
+  solution.statistics.complementarity_constraints = outcome.sizes.complementarities;
+  solution.verified = outcome.verified;
+  if (outcome.verified) solution.verification_error = outcome.verification_error;
+  for (const fesd::AccuracyRung& rung : outcome.refinements) {
+    fesd_trajopt::Refinement refinement;
+    refinement.num_stages = rung.stages;
+    refinement.num_elements = rung.elements;
+    refinement.verification_error = rung.verification_error;
+    refinement.wall_time = rung.wall_seconds;
+    refinement.status = statusCode(rung.status);
+    solution.refinements.push_back(refinement);
+  }
+  solution.header.stamp = ros::Time::now();
+  solution.header.frame_id = config_.frame_id;
+  solution.statistics.wall_time = stopwatch.wallSeconds();
+  solution.statistics.cpu_time = stopwatch.cpuSeconds();
+  if (request.warm_start && !solution.statistics.warm_started) {
+    build.notes.push_back("cold start: " + (previous ? outcome.cold_start_reason
+                                                     : std::string("no previous solution")));
+  }
+  finish(answer, build.notes);
+  ROS_INFO_STREAM("fesd_trajopt: " << answer.message << " (" << stopwatch.wallSeconds() << " s)");
+  if (outcome.status == fesd::SolveStatus::kSuccess) {
+    std::lock_guard<std::mutex> lock(last_solution_mutex_);
+    last_solution_ = std::make_shared<const fesd::SceneOutcome>(outcome);
+  }
+  publish(task, solution);
+}
+
+void TrajoptNode::publish(const fesd::SceneTask& task, const fesd_trajopt::Solution& solution) {
   std::lock_guard<std::mutex> lock(publish_mutex_);
-  solution_publisher_.publish(response.solution);
-  marker_publisher_.publish(sceneMarkers(task, response.solution, config_.frame_id));
-  const std::vector<nav_msgs::Path> paths = bodyPaths(response.solution);
+  solution_publisher_.publish(solution);
+  marker_publisher_.publish(sceneMarkers(task, solution, config_.frame_id));
+  const std::vector<nav_msgs::Path> paths = bodyPaths(solution);
   for (size_t b = 0; b < paths.size(); ++b) {
-    const std::string name = topicName(response.solution.bodies[b].name);
+    const std::string name = topicName(solution.bodies[b].name);
     auto found = path_publishers_.find(name);
     if (found == path_publishers_.end()) {
       found = path_publishers_
@@ -196,6 +253,7 @@ void TrajoptNode::handleSolve(const fesd_trajopt::SolveTrajectory::Request& requ
     }
     found->second.publish(paths[b]);
   }
+  playback_.play(solution, task.scene.dimension() == 2);
 }
 
 void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,

@@ -1,23 +1,30 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <mutex>
 #include <string>
 
+#include <fesd_trajopt/PlanTrajectoryAction.h>
 #include <fesd_trajopt/Simulate.h>
 #include <fesd_trajopt/SolveTrajectory.h>
 #include <ros/ros.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
+#include "fesd_trajopt/scene/scene_solver.h"
 #include "node_config.h"
+#include "plan_action.h"
+#include "playback.h"
 
 namespace fesd_ros {
 
-/// The fesd_trajopt node: ~solve_trajectory and ~simulate services; latched ~markers
+/// The fesd_trajopt node: ~solve_trajectory and ~simulate services and the ~plan action (the
+/// same request as ~solve_trajectory, with progress and cancel); latched ~markers
 /// (visualization_msgs/MarkerArray), ~solution (fesd_trajopt/Solution) and ~paths/<body>
-/// (nav_msgs/Path) topics; a static transform that makes ~frame_id exist for rviz. Requests are
-/// served concurrently, each with its own solver; their Ipopt solves take turns (the core
-/// serialises them, MUMPS not being thread-safe).
+/// (nav_msgs/Path) topics; ~playback, the last solution's motion; a static transform that makes
+/// ~frame_id exist for rviz. Requests are served concurrently, each with its own solver; their
+/// Ipopt solves take turns (the core serialises them, MUMPS not being thread-safe). The last
+/// successful solution is kept for warm starts.
 class TrajoptNode {
  public:
   TrajoptNode(ros::NodeHandle node, ros::NodeHandle private_node);
@@ -27,8 +34,12 @@ class TrajoptNode {
                        fesd_trajopt::SolveTrajectory::Response& response);
   bool simulate(fesd_trajopt::Simulate::Request& request,
                 fesd_trajopt::Simulate::Response& response);
-  void handleSolve(const fesd_trajopt::SolveTrajectory::Request& request,
-                   fesd_trajopt::SolveTrajectory::Response& response);
+  /// A plan request (service or action goal) answered; `monitor` watches the solve.
+  void plan(const fesd_trajopt::PlanRequest& request, const fesd::SolveMonitor* monitor,
+            fesd_trajopt::PlanTrajectoryResult& answer);
+  void handlePlan(const fesd_trajopt::PlanRequest& request, const fesd::SolveMonitor* monitor,
+                  fesd_trajopt::PlanTrajectoryResult& answer);
+  void publish(const fesd::SceneTask& task, const fesd_trajopt::Solution& solution);
   void handleSimulate(const fesd_trajopt::Simulate::Request& request,
                       fesd_trajopt::Simulate::Response& response);
 
@@ -39,6 +50,10 @@ class TrajoptNode {
   std::map<std::string, ros::Publisher> path_publishers_;  ///< by body name, latched
   tf2_ros::StaticTransformBroadcaster frame_broadcaster_;
   std::mutex publish_mutex_;
+  Playback playback_;
+  std::mutex last_solution_mutex_;
+  std::shared_ptr<const fesd::SceneOutcome> last_solution_;  ///< for warm starts
+  PlanActionServer plan_server_;  ///< last: its worker thread uses everything above
 };
 
 }  // namespace fesd_ros

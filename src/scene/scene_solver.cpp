@@ -1,6 +1,7 @@
 #include "fesd_trajopt/scene/scene_solver.h"
 
 #include <algorithm>
+#include <sstream>
 #include <stdexcept>
 
 #include "fesd_trajopt/scene/moving_part.h"
@@ -28,7 +29,76 @@ MovingPart movingPartOf(const SceneTask& task, SceneOutcome& outcome) {
   return part;
 }
 
+PlanStructure planStructure(const SceneTask& task, const SceneOutcome& outcome,
+                            const DiscretizationOptions& discretization) {
+  PlanStructure structure;
+  for (int b : outcome.moving_bodies) {
+    const SceneBody& body = task.scene.bodies()[b];
+    std::ostringstream text;
+    text << body.name << " (radius " << body.radius << ", "
+         << (body.actuated ? "actuated" : "passive") << ")";
+    structure.moving_bodies.push_back(text.str());
+  }
+  for (const PairDecision& decision : outcome.decisions) {
+    if (decision.modelled) structure.modelled_pairs.push_back(task.scene.pairName(decision.pair));
+  }
+  structure.horizon = task.horizon;
+  structure.intervals = task.num_intervals;
+  structure.elements = discretization.num_elements;
+  structure.stages = discretization.num_stages;
+  structure.switch_detection = discretization.switch_detection;
+  structure.sizes = outcome.sizes;
+  return structure;
+}
+
+/// "what differs: before -> now".
+template <class Value>
+std::string difference(const std::string& what, const Value& before, const Value& now) {
+  std::ostringstream text;
+  text << what << " differ: " << before << " -> " << now;
+  return text.str();
+}
+
+std::string joined(const std::vector<std::string>& items) {
+  std::string text;
+  for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
+  return "[" + text + "]";
+}
+
 }  // namespace
+
+std::string warmStartRefusal(const SceneOutcome& previous, const PlanStructure& now) {
+  if (!previous.solved() || previous.report.solution.empty()) return "no previous solution";
+  return warmStartMismatch(previous.structure, now);
+}
+
+std::string warmStartMismatch(const PlanStructure& previous, const PlanStructure& now) {
+  if (previous.moving_bodies != now.moving_bodies) {
+    return difference("the moving bodies", joined(previous.moving_bodies),
+                      joined(now.moving_bodies));
+  }
+  if (previous.modelled_pairs != now.modelled_pairs) {
+    return difference("the modelled contact pairs", joined(previous.modelled_pairs),
+                      joined(now.modelled_pairs));
+  }
+  if (previous.horizon != now.horizon) {
+    return difference("the horizons", previous.horizon, now.horizon);
+  }
+  if (previous.intervals != now.intervals || previous.elements != now.elements ||
+      previous.stages != now.stages || previous.switch_detection != now.switch_detection) {
+    const auto grid = [](const PlanStructure& s) {
+      return std::to_string(s.intervals) + " intervals x " + std::to_string(s.elements) +
+             " elements, n_s = " + std::to_string(s.stages) +
+             (s.switch_detection ? ", FESD" : ", standard");
+    };
+    return difference("the discretisations", grid(previous), grid(now));
+  }
+  if (previous.sizes.variables != now.sizes.variables ||
+      previous.sizes.constraints != now.sizes.constraints) {
+    return difference("the NLP sizes (variables)", previous.sizes.variables, now.sizes.variables);
+  }
+  return "";
+}
 
 SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
                             const SceneSolveOptions& options) {
@@ -41,15 +111,27 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
   const MovingPart part = movingPartOf(task, outcome);
   const OcpDefinition ocp = buildOcp(part.task, part.modelled);
   OcpSolver solver(ocp, options.ocp);
-  const OcpSolution solution = solver.solve(planPushes(part.task, part.modelled).guess);
+  solver.setMonitor(options.monitor);
+  const NlpAssembly& nlp = solver.discretization().nlp();
+  outcome.sizes = {nlp.numVariables(), nlp.numConstraints(), nlp.numComplementarities()};
+  outcome.structure = planStructure(task, outcome, options.ocp.discretization);
+  const TrajectoryGuess plan = planPushes(part.task, part.modelled).guess;
+  if (options.previous != nullptr) {
+    outcome.cold_start_reason = warmStartRefusal(*options.previous, outcome.structure);
+  }
+  const bool warm = options.previous != nullptr && outcome.cold_start_reason.empty();
+  OcpSolution previous;
+  if (warm) previous.report = options.previous->report;
+  const OcpSolution solution = warm ? solver.solve(previous, plan) : solver.solve(plan);
+  if (solution.start == OcpStart::kGuessAfterPrevious) {
+    outcome.cold_start_reason = "the warm solve failed";
+  }
   outcome.status = solution.status;
   outcome.message = solution.message;
   outcome.start = solution.start;
   outcome.trajectory = fullSceneTrajectory(task, part, solution.trajectory);
   outcome.report = solution.report;
-  const NlpAssembly& nlp = solver.discretization().nlp();
-  outcome.sizes = {nlp.numVariables(), nlp.numConstraints(), nlp.numComplementarities()};
-  if (options.verify) {
+  if (options.verify && solution.status != SolveStatus::kCancelled) {
     SimulationOptions fine;
     fine.discretization = options.verification;
     // 0 when the solve used it all: the re-simulation times out and its error is infinite.

@@ -32,8 +32,9 @@ bool allFinite(const double* values, int count) {
 /// deadline and records the final primal-dual iterate.
 class TnlpAdapter : public Ipopt::TNLP {
  public:
-  TnlpAdapter(const NlpProblem& problem, PrimalDualPoint& point, double deadline)
-      : problem_(problem), point_(point), deadline_(deadline) {}
+  TnlpAdapter(const NlpProblem& problem, PrimalDualPoint& point, double deadline,
+              const std::atomic<bool>* cancel)
+      : problem_(problem), point_(point), deadline_(deadline), cancel_(cancel) {}
 
   double evaluationSeconds() const { return evaluation_seconds_; }
 
@@ -119,6 +120,7 @@ class TnlpAdapter : public Ipopt::TNLP {
   bool intermediate_callback(Ipopt::AlgorithmMode, Index, Number, Number, Number, Number, Number,
                              Number, Number, Number, Index, const Ipopt::IpoptData*,
                              Ipopt::IpoptCalculatedQuantities*) override {
+    if (cancel_ != nullptr && cancel_->load()) return false;
     return deadline_ <= 0.0 || steadySeconds() < deadline_;
   }
 
@@ -152,6 +154,7 @@ class TnlpAdapter : public Ipopt::TNLP {
   const NlpProblem& problem_;
   PrimalDualPoint& point_;
   double deadline_;
+  const std::atomic<bool>* cancel_;
   double evaluation_seconds_ = 0.0;
 };
 
@@ -212,7 +215,7 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
   }
   const auto start = std::chrono::steady_clock::now();
   Ipopt::SmartPtr<TnlpAdapter> adapter =
-      new TnlpAdapter(problem, point, solve_settings.deadline_seconds);
+      new TnlpAdapter(problem, point, solve_settings.deadline_seconds, solve_settings.cancel);
   NlpOutcome outcome;
   // MUMPS keeps module-level state (its load balancing, dmumps_load): two solves in parallel
   // threads of one process crashed there. Solves in different threads take turns.

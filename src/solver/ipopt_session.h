@@ -35,6 +35,7 @@ class IpoptSession {
     double warm_start_mu = 1e-4;    ///< barrier parameter of a warm start
     double tolerance = 1e-10;
     double objective_scaling = 1.0;
+    const std::atomic<bool>* cancel = nullptr;  ///< set: stop at the next iteration
   };
   /// Solves from `point` and overwrites it with Ipopt's final iterate; a point with multipliers
   /// is a warm start.

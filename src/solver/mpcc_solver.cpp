@@ -25,6 +25,10 @@ std::string statusName(SolveStatus status) {
       return "complementarity_not_met";
     case SolveStatus::kSolverError:
       return "solver_error";
+    case SolveStatus::kCancelled:
+      return "cancelled";
+    case SolveStatus::kAccuracyNotMet:
+      return "accuracy_not_met";
   }
   return "unknown";
 }
@@ -106,13 +110,14 @@ double constraintViolation(const NlpProblem& problem, const std::vector<double>&
   return std::isnan(violation) ? std::numeric_limits<double>::infinity() : violation;
 }
 
-/// Settings shared by every solve of one call: the deadline, and Ipopt's obj_scaling_factor
-/// (fixed, or the objective at the guess brought to the target size).
+/// Settings shared by every solve of one call: the deadline, the monitor's cancel flag, and
+/// Ipopt's obj_scaling_factor (fixed, or the objective at the guess brought to the target size).
 IpoptSession::SolveSettings initialSettings(const HomotopyOptions& options,
                                             const NlpProblem& problem,
                                             const std::vector<double>& guess,
-                                            double wall_time_budget) {
+                                            double wall_time_budget, const SolveMonitor* monitor) {
   IpoptSession::SolveSettings settings;
+  if (monitor != nullptr) settings.cancel = monitor->cancel;
   const double budget = wall_time_budget >= 0.0 ? wall_time_budget : options.wall_time_budget;
   // A deadline of exactly now still stops the first solve at its first iteration.
   if (std::isfinite(budget)) settings.deadline_seconds = steadySeconds() + std::max(budget, 1e-9);
@@ -124,13 +129,20 @@ IpoptSession::SolveSettings initialSettings(const HomotopyOptions& options,
   return settings;
 }
 
+/// Appends a solved NLP to the report's history and tells the monitor.
+void record(MpccReport& report, const HomotopyStep& step, const SolveMonitor* monitor) {
+  report.history.push_back(step);
+  if (monitor != nullptr && monitor->on_step) monitor->on_step(step);
+}
+
 /// The polishing stage: keeps `report` as it is unless a polished NLP converges (and, if
 /// `require_stationarity`, is B-stationary). Tries the identified active set; after a failed
 /// solve the pairs it left biactive flipped (RelaxedMpcc::flipBiactivePairs), else the most
 /// ambiguous pairs flipped one at a time; `attempts` solves in all.
 void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& problem,
             const PrimalDualPoint& converged, const IpoptSession::SolveSettings& settings,
-            int attempts, bool require_stationarity, MpccReport& report) {
+            int attempts, bool require_stationarity, const SolveMonitor* monitor,
+            MpccReport& report) {
   // After a failed attempt: its biactive pairs flipped, tried before the next attempt.
   std::vector<bool> biactive_flipped;
   int flip = -1;  // the identified active set, then its most ambiguous pairs flipped in turn
@@ -155,9 +167,10 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
     if (!solved && !flipped_biactive) biactive_flipped = problem.flipBiactivePairs(point.x.data());
     problem.releaseActiveSet();
     const double residual = problem.complementarityResidual(point.x.data());
-    report.history.push_back({0.0, outcome.iterations, residual, outcome.objective,
-                              IpoptSession::statusName(outcome.status), outcome.wall_seconds,
-                              solved});
+    record(report,
+           {0.0, outcome.iterations, residual, outcome.objective,
+            IpoptSession::statusName(outcome.status), outcome.wall_seconds, solved},
+           monitor);
     report.iterations += outcome.iterations;
     report.evaluation_seconds += outcome.evaluation_seconds;
     report.ipopt_seconds += outcome.wall_seconds - outcome.evaluation_seconds;
@@ -218,10 +231,11 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
     report.solution = point.x;
     report.complementarity_residual = problem.complementarityResidual(point.x.data());
     IpoptSession::SolveSettings settings =
-        initialSettings(options_, problem, point.x, wall_time_budget);
+        initialSettings(options_, problem, point.x, wall_time_budget, monitor_);
     settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma_initial;
     settings.tolerance = options_.ipopt.tolerance;
-    polish(*session_, options_, problem, point, settings, options_.polish_attempts, true, report);
+    polish(*session_, options_, problem, point, settings, options_.polish_attempts, true, monitor_,
+           report);
     if (polishedToTolerance(report, options_)) {
       report.status = SolveStatus::kSuccess;
       report.message = "success: polished from the previous solution's active set, " +
@@ -249,7 +263,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
   const PrimalDualPoint start = point;
   problem.setVanishingTermsWeight(options_.vanishing_terms_weight);
   IpoptSession::SolveSettings settings =
-      initialSettings(options_, problem, point.x, wall_time_budget);
+      initialSettings(options_, problem, point.x, wall_time_budget, monitor_);
   const bool smooth = problem.numComplementarities() == 0;
   const int steps = smooth ? 1 : options_.max_steps;
   double sigma = sigma_initial > 0.0 ? sigma_initial : options_.sigma_initial;
@@ -269,9 +283,11 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
                : std::max(options_.ipopt.tolerance, options_.relaxed_tolerance_factor * sigma);
     const NlpOutcome outcome = session_->solve(problem, point, settings);
     const double residual = problem.complementarityResidual(point.x.data());
-    report.history.push_back({sigma, outcome.iterations, residual, outcome.objective,
-                              IpoptSession::statusName(outcome.status), outcome.wall_seconds,
-                              IpoptSession::converged(outcome.status)});
+    record(report,
+           {sigma, outcome.iterations, residual, outcome.objective,
+            IpoptSession::statusName(outcome.status), outcome.wall_seconds,
+            IpoptSession::converged(outcome.status)},
+           monitor_);
     report.iterations += outcome.iterations;
     report.evaluation_seconds += outcome.evaluation_seconds;
     report.ipopt_seconds += outcome.wall_seconds - outcome.evaluation_seconds;
@@ -301,7 +317,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
         polished_set = active_set;
         IpoptSession::SolveSettings polish_settings = settings;
         polish_settings.tolerance = options_.ipopt.tolerance;
-        polish(*session_, options_, problem, point, polish_settings, 1, true, report);
+        polish(*session_, options_, problem, point, polish_settings, 1, true, monitor_, report);
         if (polishedToTolerance(report, options_)) {
           report.status = SolveStatus::kSuccess;
           break;
@@ -310,7 +326,10 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
       settled_candidate = active_set;
     }
     report.status = converged ? SolveStatus::kComplementarityNotMet : failureStatus(outcome.status);
-    if (report.status == SolveStatus::kTimeout) break;
+    if (report.status == SolveStatus::kTimeout && monitor_ != nullptr && monitor_->cancelled()) {
+      report.status = SolveStatus::kCancelled;
+    }
+    if (interrupted(report.status)) break;
     consecutive_infeasible =
         report.status == SolveStatus::kInfeasible ? consecutive_infeasible + 1 : 0;
     if (!converged && (!options_.continue_after_failure ||
@@ -320,7 +339,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     sigma *= options_.sigma_reduction;
     if (sigma < options_.minimum_sigma) break;
   }
-  if (report.status == SolveStatus::kTimeout && !std::isfinite(best_residual) &&
+  if (interrupted(report.status) && !std::isfinite(best_residual) &&
       constraintViolation(problem, start.x) < constraintViolation(problem, point.x)) {
     // Nothing converged: of the start and the interrupted iterate, the more feasible one (a
     // warm start's start is a previous solution, e.g. the fixed-grid stage's).
@@ -328,7 +347,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     best_residual = problem.complementarityResidual(start.x.data());
     best_objective = objectiveOrNaN(problem, start.x);
   }
-  if (report.status == SolveStatus::kTimeout && std::isfinite(best_residual)) {
+  if (interrupted(report.status) && std::isfinite(best_residual)) {
     // The interrupted NLP's iterate solves nothing yet: the best converged relaxed NLP is the
     // best iterate there is.
     report.solution = best.x;
@@ -342,12 +361,12 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     if (report.status == SolveStatus::kSuccess && !report.polished) {
       settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma;
       polish(*session_, options_, problem, point, settings, options_.polish_attempts, false,
-             report);
-    } else if (report.status != SolveStatus::kTimeout &&
-               best_residual <= options_.polish_rescue_residual) {
+             monitor_, report);
+    } else if (!interrupted(report.status) && best_residual <= options_.polish_rescue_residual) {
       settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * best_sigma;
       report.complementarity_residual = best_residual;
-      polish(*session_, options_, problem, best, settings, options_.polish_attempts, false, report);
+      polish(*session_, options_, problem, best, settings, options_.polish_attempts, false,
+             monitor_, report);
       if (polishedToTolerance(report, options_)) report.status = SolveStatus::kSuccess;
     }
   }

@@ -18,6 +18,8 @@ namespace manipulation_example {
 
 /// The scene, targets, weights, speed and workspace bounds as a task.
 SceneTask task(int num_intervals);
+/// The same task with the object's goal elsewhere (replanning examples).
+SceneTask task(int num_intervals, const Eigen::Vector2d& object_goal);
 /// The two contact pairs of the paper: actuated disc j against the passive disc. Reachability
 /// pruning (decidePairs) finds the same: the workspace bounds keep the actuators apart.
 std::vector<ContactPair> contactPairs();

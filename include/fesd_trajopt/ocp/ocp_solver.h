@@ -27,9 +27,17 @@ struct OcpOptions {
   /// with FESD from that point. The loose relaxations with free steps were the slowest and least
   /// reliable NLPs of all (see README); 0 runs FESD from the start.
   double fixed_grid_until_sigma = 1e-2;
-  /// A warm start (solve(previous)) begins the homotopy at this sigma instead of sigma0, so the
-  /// previous solution is not relaxed away.
+  /// A warm start (solve(previous)) first polishes the previous active set; when that fails, the
+  /// homotopy begins at this sigma instead of sigma0, so the previous solution is not relaxed away.
   double warm_start_sigma = 1e-4;
+  /// Ipopt's mu_init and bound push of a warm start. The previous solution of a changed task
+  /// (e.g. the showcase's object target moved by 0.3: objective 90 at the old optimum against
+  /// 0.056) is far from the new optimum, and Ipopt needs room to move: with mu_init = 1e-10 and
+  /// the point pushed 1e-9 off its bounds it took 47 iterations; with 1e-11 (below Ipopt's
+  /// tolerance 1e-10, so no barrier reduction at the end) and a push of 1e-3, 15 (targets moved
+  /// by -0.3: 19 -> 15; the same task again: 11 -> 13). mu_init = 1e-7 cost more in every case.
+  double warm_start_mu = 1e-11;
+  double warm_start_bound_push = 1e-3;
   /// Solving from a TrajectoryGuess (e.g. a planned motion, solve(guess)): the FESD homotopy
   /// starts at this sigma on the guess, without the fixed-grid stage. Measured on the showcase:
   /// the cold start's first relaxed NLP (sigma = 1) wanders 150-500 Ipopt iterations and ends in
@@ -50,6 +58,7 @@ enum class OcpStart {
   kGuess,               ///< a TrajectoryGuess (solve(guess))
   kConstantAfterGuess,  ///< the solve from the guess failed; then from the constant start
   kPrevious,            ///< a previous solution (solve(previous))
+  kGuessAfterPrevious,  ///< the warm start failed; then from the guess (solve(previous, guess))
 };
 /// The start in words; `guess` names what solve(guess) was given (e.g. "push plan").
 std::string startName(OcpStart start, const std::string& guess = "guess");
@@ -79,20 +88,29 @@ class OcpSolver {
   /// solve fails (neither success nor timeout), solve() follows within what is left of the
   /// wall-time budget; the report then holds both.
   OcpSolution solve(const TrajectoryGuess& guess);
+  /// Warm start, and when it fails (neither success nor interrupted) solve(fallback) within what
+  /// is left of the budget; the report then holds both.
+  OcpSolution solve(const OcpSolution& previous, const TrajectoryGuess& fallback);
 
   const Discretization& discretization() const { return *discretization_; }
   const OcpOptions& options() const { return options_; }
+  /// Watches every later solve (progress, cancel); nullptr: none. Must outlive them.
+  void setMonitor(const SolveMonitor* monitor);
 
  private:
   /// solve() within a wall-time budget (seconds).
   OcpSolution solveFromConstant(double wall_time_budget);
+  /// solve(guess) within a wall-time budget (seconds).
+  OcpSolution solveFromGuess(const TrajectoryGuess& guess, double wall_time_budget);
+  /// `later`, started after `earlier` failed: one report with both histories and efforts.
+  static OcpSolution after(const OcpSolution& earlier, OcpSolution later);
   /// The solution read from `report`, whose point belongs to `source`.
   OcpSolution finish(MpccReport report, const Discretization& source) const;
 
   OcpOptions options_;
   std::unique_ptr<Discretization> discretization_;
   std::unique_ptr<Discretization> fixed_grid_;  ///< the standard method on the same grid
-  MpccSolver solver_, fixed_grid_solver_, guess_solver_;
+  MpccSolver solver_, fixed_grid_solver_, guess_solver_, previous_solver_;
 };
 
 /// Re-simulates a solution's controls with the FESD integrator (one step per control interval,

@@ -18,6 +18,29 @@ struct NlpSizes {
   int variables = 0, constraints = 0, complementarities = 0;
 };
 
+/// What a warm start needs unchanged: the moving bodies, the modelled pairs, the discretisation
+/// and the NLP it became. Targets, initial positions, bounds and weights may differ.
+struct PlanStructure {
+  std::vector<std::string> moving_bodies;   ///< "name (radius r, actuated|passive)"
+  std::vector<std::string> modelled_pairs;  ///< DiscScene::pairName
+  double horizon = 0.0;
+  int intervals = 0, elements = 0, stages = 0;
+  bool switch_detection = true;
+  NlpSizes sizes;
+};
+
+/// Why a solution of structure `previous` cannot warm-start a task of structure `now`; "" when
+/// it can.
+std::string warmStartMismatch(const PlanStructure& previous, const PlanStructure& now);
+
+/// One rung of an accuracy ladder (solveToAccuracy).
+struct AccuracyRung {
+  int stages = 0, elements = 0;
+  double verification_error = std::numeric_limits<double>::infinity();
+  double wall_seconds = 0.0;
+  SolveStatus status = SolveStatus::kSolverError;
+};
+
 /// A scene task solved or simulated, in the full scene's terms. A task that is refused
 /// (`invalid`) or cannot be met (`infeasible`) is never solved: status and trajectory stay
 /// at their defaults.
@@ -35,6 +58,10 @@ struct SceneOutcome {
   bool verified = false;
   /// Distance of the re-simulated terminal state from the solution's (resimulationError).
   double verification_error = std::numeric_limits<double>::quiet_NaN();
+  PlanStructure structure;  ///< of the solve (not for simulations)
+  /// A warm start was asked for but the solve started cold (or fell back to cold): why.
+  std::string cold_start_reason;
+  std::vector<AccuracyRung> refinements;  ///< solveToAccuracy's rungs, in order
 
   bool solved() const { return invalid.empty() && infeasible.empty(); }
   int modelledPairs() const {
@@ -43,12 +70,20 @@ struct SceneOutcome {
   }
 };
 
+/// Why `previous` cannot warm-start a task of structure `now` (none, or warmStartMismatch); "" when
+/// it can.
+std::string warmStartRefusal(const SceneOutcome& previous, const PlanStructure& now);
+
 struct SceneSolveOptions {
   OcpOptions ocp;           ///< discretisation and homotopy (its wall-time budget covers all)
   bool prune_pairs = true;  ///< model only the pairs that can touch (decidePairs); else all
   bool verify = false;      ///< re-simulate the optimal controls finely (resimulationError)
   /// The re-simulation's discretisation; its budget is what the solve left of the total.
   DiscretizationOptions verification;
+  /// Warm start from this outcome of an earlier solve when warmStartMismatch allows it (falling
+  /// back to the push plan if the warm solve fails); nullptr: cold. Not owned.
+  const SceneOutcome* previous = nullptr;
+  const SolveMonitor* monitor = nullptr;  ///< progress and cancel of the solve; not owned
 };
 
 /// The planning entry point of a scene task: validateTask, infeasibility, decidePairs,
@@ -57,6 +92,16 @@ struct SceneSolveOptions {
 /// the verification.
 SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
                             const SceneSolveOptions& options);
+
+/// The accuracy ladder: the task solved and verified on options' discretisation, then with one
+/// more stage at a time up to limits.max_stages, then one more element per interval at a time up
+/// to limits.max_elements, until a rung's verification_error <= target_accuracy (kSuccess) or the
+/// wall-time budget is spent (kTimeout) or the ladder ends (kAccuracyNotMet). Returns the rung
+/// that met the target, else the most accurate one, with every rung in `refinements`. Each
+/// rung is verified against a re-simulation at least as fine as options.verification and with
+/// at least the rung's stages and twice its elements.
+SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
+                             SceneSolveOptions options, double target_accuracy);
 
 /// The simulation entry point: the scene moved by given controls (per step, the full scene's
 /// control vector; one value for all steps, or num_intervals values). Physics only: workspace

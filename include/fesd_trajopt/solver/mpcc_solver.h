@@ -1,5 +1,7 @@
 #pragma once
 
+#include <atomic>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -97,8 +99,14 @@ enum class SolveStatus {
   kTimeout,                ///< the wall-time budget ran out; the best iterate is returned
   kComplementarityNotMet,  ///< the homotopy ended above the complementarity tolerance
   kSolverError,            ///< Ipopt failed otherwise (restoration failure, bad values, ...)
+  kCancelled,              ///< SolveMonitor::cancel was set; the best iterate is returned
+  kAccuracyNotMet,         ///< an accuracy target was not met on any rung (the scene layer's)
 };
 std::string statusName(SolveStatus status);
+/// The solve was stopped from outside (timeout or cancel): keep the best iterate, try nothing more.
+inline bool interrupted(SolveStatus status) {
+  return status == SolveStatus::kTimeout || status == SolveStatus::kCancelled;
+}
 
 /// One relaxed NLP of the homotopy.
 struct HomotopyStep {
@@ -109,6 +117,15 @@ struct HomotopyStep {
   std::string ipopt_status;
   double wall_seconds;
   bool converged;  ///< Ipopt solved this NLP (to tolerance or to the acceptable level)
+};
+
+/// Watches a running solve from another thread's point of view: told after every relaxed (or
+/// polishing) NLP, and asked between Ipopt iterations whether to stop.
+struct SolveMonitor {
+  std::function<void(const HomotopyStep&)> on_step;
+  /// Set to stop the solve within one Ipopt iteration: it ends kCancelled with the best iterate.
+  const std::atomic<bool>* cancel = nullptr;
+  bool cancelled() const { return cancel != nullptr && cancel->load(); }
 };
 
 /// Multipliers of an NLP solution (bounds and constraints), for warm starts.
@@ -161,6 +178,8 @@ class MpccSolver {
   MpccSolver& operator=(const MpccSolver&) = delete;
 
   const HomotopyOptions& options() const { return options_; }
+  /// Watches every later solve (nullptr: none); the monitor must outlive them.
+  void setMonitor(const SolveMonitor* monitor) { monitor_ = monitor; }
   /// Solves from the initial guess, the homotopy starting at `sigma_initial` (default: the
   /// options'). With zero complementarity constraints the problem is a smooth NLP and is solved
   /// once, without homotopy.
@@ -177,6 +196,7 @@ class MpccSolver {
 
   HomotopyOptions options_;
   std::unique_ptr<IpoptSession> session_;
+  const SolveMonitor* monitor_ = nullptr;
 };
 
 }  // namespace fesd

@@ -1,0 +1,56 @@
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include <actionlib/server/action_server.h>
+#include <fesd_trajopt/PlanTrajectoryAction.h>
+#include <ros/node_handle.h>
+
+#include "fesd_trajopt/solver/mpcc_solver.h"
+
+namespace fesd_ros {
+
+/// The ~plan action. Goals queue and run one after the other in a worker thread, so a new goal
+/// never touches the one in progress. Feedback follows every relaxed NLP; cancelling the running
+/// goal stops its solve within one Ipopt iteration and ends it PREEMPTED with the best iterate;
+/// cancelling a queued goal ends it RECALLED without a solve.
+class PlanActionServer {
+ public:
+  /// Solves a request, watched by the monitor, into the result (status, message, solution).
+  using Plan = std::function<void(const fesd_trajopt::PlanRequest&, const fesd::SolveMonitor&,
+                                  fesd_trajopt::PlanTrajectoryResult&)>;
+
+  PlanActionServer(ros::NodeHandle private_node, Plan plan);
+  ~PlanActionServer();
+  /// Starts taking goals (once everything `plan` uses is ready).
+  void start() { server_.start(); }
+  PlanActionServer(const PlanActionServer&) = delete;
+  PlanActionServer& operator=(const PlanActionServer&) = delete;
+
+ private:
+  using Server = actionlib::ActionServer<fesd_trajopt::PlanTrajectoryAction>;
+  using GoalHandle = Server::GoalHandle;
+
+  void receive(GoalHandle goal);
+  void cancel(GoalHandle goal);
+  void work();
+  void run(GoalHandle& goal);
+
+  Plan plan_;
+  Server server_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<GoalHandle> queue_;
+  std::string running_;  ///< goal id of the goal being solved; "" when idle
+  std::atomic<bool> cancel_running_{false};
+  bool stopping_ = false;
+  std::thread worker_;
+};
+
+}  // namespace fesd_ros

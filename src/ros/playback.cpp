@@ -1,0 +1,78 @@
+#include "playback.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <visualization_msgs/MarkerArray.h>
+
+#include "solution_message.h"
+
+namespace fesd_ros {
+namespace {
+
+constexpr double kPauseSeconds = 1.0;  // between the end of one pass and the next
+
+/// A body's position at time t, linear between the element boundaries.
+geometry_msgs::Point positionAt(const fesd_trajopt::Solution& solution,
+                                const fesd_trajopt::BodyTrajectory& body, double t) {
+  const std::vector<double>& times = solution.times;
+  const size_t k = std::upper_bound(times.begin(), times.end(), t) - times.begin();
+  if (k == 0) return body.positions.front();
+  if (k >= times.size()) return body.positions.back();
+  const double span = times[k] - times[k - 1];
+  const double w = span > 0.0 ? (t - times[k - 1]) / span : 1.0;
+  const geometry_msgs::Point &a = body.positions[k - 1], &b = body.positions[k];
+  geometry_msgs::Point p;
+  p.x = a.x + w * (b.x - a.x);
+  p.y = a.y + w * (b.y - a.y);
+  p.z = a.z + w * (b.z - a.z);
+  return p;
+}
+
+}  // namespace
+
+Playback::Playback(ros::NodeHandle private_node, double rate, double frames_per_second)
+    : rate_(rate) {
+  if (rate_ <= 0.0) return;
+  publisher_ = private_node.advertise<visualization_msgs::MarkerArray>("playback", 1);
+  timer_ = private_node.createWallTimer(ros::WallDuration(1.0 / frames_per_second),
+                                        [this](const ros::WallTimerEvent&) { showFrame(); });
+}
+
+void Playback::play(const fesd_trajopt::Solution& solution, bool planar) {
+  if (rate_ <= 0.0) return;
+  std::lock_guard<std::mutex> lock(mutex_);
+  solution_ = solution;
+  planar_ = planar;
+  start_ = ros::WallTime::now();
+}
+
+void Playback::showFrame() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (solution_.times.empty()) return;
+  const double duration = solution_.times.back() - solution_.times.front();
+  const double period = duration + kPauseSeconds * rate_;
+  const double played = (ros::WallTime::now() - start_).toSec() * rate_;
+  const double t = solution_.times.front() + std::min(std::fmod(played, period), duration);
+  visualization_msgs::MarkerArray frame;
+  for (size_t b = 0; b < solution_.bodies.size(); ++b) {
+    const fesd_trajopt::BodyTrajectory& body = solution_.bodies[b];
+    if (body.positions.size() != solution_.times.size()) continue;
+    visualization_msgs::Marker m;
+    m.header.frame_id = solution_.header.frame_id;
+    m.header.stamp = ros::Time::now();
+    m.ns = "playback";
+    m.id = static_cast<int>(b);
+    m.type = planar_ ? visualization_msgs::Marker::CYLINDER : visualization_msgs::Marker::SPHERE;
+    m.action = visualization_msgs::Marker::ADD;
+    m.pose.position = positionAt(solution_, body, t);
+    m.pose.orientation.w = 1.0;
+    m.scale.x = m.scale.y = 2.0 * body.radius;
+    m.scale.z = planar_ ? 0.15 : 2.0 * body.radius;
+    m.color = bodyColor(body.actuated, 1.0);
+    frame.markers.push_back(m);
+  }
+  publisher_.publish(frame);
+}
+
+}  // namespace fesd_ros

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <mutex>
+#include <string>
+
+#include <fesd_trajopt/Solution.h>
+#include <ros/node_handle.h>
+#include <ros/wall_timer.h>
+
+namespace fesd_ros {
+
+/// Plays the last solution back in rviz: the bodies on ~playback (visualization_msgs/
+/// MarkerArray, namespace "playback") at solution time rate * (wall time since the solve),
+/// between element boundaries linearly, then again after a pause of a second.
+class Playback {
+ public:
+  /// rate <= 0: no playback.
+  Playback(ros::NodeHandle private_node, double rate, double frames_per_second);
+  /// Starts playing `solution` from its beginning (planar: bodies as discs).
+  void play(const fesd_trajopt::Solution& solution, bool planar);
+
+ private:
+  void showFrame();
+
+  double rate_;
+  ros::Publisher publisher_;
+  ros::WallTimer timer_;
+  std::mutex mutex_;
+  fesd_trajopt::Solution solution_;
+  bool planar_ = true;
+  ros::WallTime start_;
+};
+
+}  // namespace fesd_ros

@@ -1,0 +1,190 @@
+#!/usr/bin/python3
+"""Integration tests of the node for replanning: the ~plan action (feedback, cancel, queueing),
+warm starts, the accuracy ladder, and the playback of the motion."""
+import math
+import time
+import unittest
+
+import actionlib
+import rospy
+import rostest
+from actionlib_msgs.msg import GoalStatus
+from fesd_trajopt.msg import (BodySpec, PlanRequest, PlanTrajectoryAction, PlanTrajectoryGoal,
+                              Solution)
+from fesd_trajopt.srv import SolveTrajectory
+from geometry_msgs.msg import Point
+from visualization_msgs.msg import MarkerArray
+
+from test_node_services import SOLVE, small_default
+
+PLAN = "/fesd_trajopt/plan"
+
+
+def moved_target(dx, warm_start=False):
+    """The default scene with the object's target (0, 10) moved by dx along x."""
+    request = PlanRequest(warm_start=warm_start)
+    request.bodies = [BodySpec(name="object", target=Point(dx, 10.0, 0.0), target_weight=1000.0)]
+    return request
+
+
+def long_goal():
+    """The default scene with an accuracy target no rung reaches: the ladder runs for seconds."""
+    return PlanTrajectoryGoal(request=PlanRequest(target_accuracy=1e-14))
+
+
+def finite_states(solution):
+    return len(solution.states) > 0 and all(math.isfinite(v) for v in solution.states)
+
+
+class PlanAction(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("fesd_trajopt_plan_test")
+        rospy.wait_for_service(SOLVE, timeout=60.0)
+        cls.solve = rospy.ServiceProxy(SOLVE, SolveTrajectory)
+        cls.client = cls.new_client()
+
+    @staticmethod
+    def new_client():
+        client = actionlib.SimpleActionClient(PLAN, PlanTrajectoryAction)
+        assert client.wait_for_server(rospy.Duration(60.0)), "no ~plan action server"
+        return client
+
+    def test_an_empty_goal_solves_the_default_scene_with_feedback_after_every_relaxed_nlp(self):
+        feedback = []
+        self.client.send_goal(PlanTrajectoryGoal(), feedback_cb=feedback.append)
+        self.assertTrue(self.client.wait_for_result(rospy.Duration(120.0)))
+        self.assertEqual(self.client.get_state(), GoalStatus.SUCCEEDED)
+        result = self.client.get_result()
+        self.assertEqual(result.status, Solution.SUCCESS, result.message)
+        statistics = result.solution.statistics
+        self.assertEqual(len(feedback), statistics.homotopy_steps)
+        self.assertEqual([f.homotopy_step for f in feedback], list(range(1, len(feedback) + 1)))
+        self.assertEqual([f.sigma for f in feedback], list(statistics.sigma))
+        iterations = [f.ipopt_iterations for f in feedback]
+        self.assertEqual(iterations, sorted(iterations))  # monotone
+        self.assertEqual(iterations[-1], statistics.ipopt_iterations)
+        elapsed = [f.elapsed for f in feedback]
+        self.assertEqual(elapsed, sorted(elapsed))
+        self.assertLessEqual(elapsed[-1], statistics.wall_time)
+        self.assertEqual(feedback[-1].complementarity_residual, 0.0)  # polished
+        self.assertAlmostEqual(feedback[-1].objective, statistics.objective, places=12)
+        # The same request through the service gives the same answer.
+        answer = self.solve(PlanRequest())
+        self.assertEqual(answer.solution.times, result.solution.times)
+        self.assertEqual(answer.solution.states, result.solution.states)
+
+    def test_cancel_stops_within_a_second_and_ends_preempted_with_a_finite_trajectory(self):
+        feedback = []
+        self.client.send_goal(long_goal(), feedback_cb=feedback.append)
+        deadline = time.time() + 60.0
+        while not feedback and time.time() < deadline:
+            time.sleep(0.01)
+        self.assertTrue(feedback, "no feedback")
+        cancelled_at = time.time()
+        self.client.cancel_goal()
+        self.assertTrue(self.client.wait_for_result(rospy.Duration(10.0)))
+        waited = time.time() - cancelled_at
+        self.assertLess(waited, 1.0)
+        self.assertEqual(self.client.get_state(), GoalStatus.PREEMPTED)
+        result = self.client.get_result()
+        self.assertEqual(result.status, Solution.CANCELLED, result.message)
+        self.assertTrue(finite_states(result.solution))
+        self.assertEqual(len(result.solution.states),
+                         len(result.solution.times) * result.solution.state_dimension)
+
+    def test_goals_queue_and_each_gets_its_own_answer(self):
+        first, second = self.client, self.new_client()
+        requests = [small_default(12), small_default(8)]
+        first.send_goal(PlanTrajectoryGoal(request=requests[0]))
+        second.send_goal(PlanTrajectoryGoal(request=requests[1]))
+        self.assertTrue(second.wait_for_result(rospy.Duration(120.0)))
+        # The second goal waited for the first: by the time it is done, so is the first.
+        self.assertEqual(first.get_state(), GoalStatus.SUCCEEDED)
+        self.assertEqual(second.get_state(), GoalStatus.SUCCEEDED)
+        for client, request in zip([first, second], requests):
+            result = client.get_result()
+            self.assertEqual(result.status, Solution.SUCCESS, result.message)
+            self.assertEqual(result.solution.states, self.solve(request).solution.states)
+
+    def test_a_queued_goal_cancelled_before_it_starts_is_recalled_without_a_solve(self):
+        running, queued = self.client, self.new_client()
+        running.send_goal(long_goal())
+        queued.send_goal(PlanTrajectoryGoal(request=small_default(8)))
+        deadline = time.time() + 10.0
+        while running.get_state() != GoalStatus.ACTIVE and time.time() < deadline:
+            time.sleep(0.01)
+        time.sleep(0.5)  # the queued goal reaches the server
+        self.assertEqual(running.get_state(), GoalStatus.ACTIVE)
+        self.assertEqual(queued.get_state(), GoalStatus.PENDING)
+        queued.cancel_goal()
+        self.assertTrue(queued.wait_for_result(rospy.Duration(10.0)))
+        self.assertEqual(queued.get_state(), GoalStatus.RECALLED)
+        self.assertEqual(queued.get_result().status, Solution.CANCELLED)
+        self.assertEqual(queued.get_result().solution.statistics.ipopt_iterations, 0)
+        running.cancel_goal()
+        self.assertTrue(running.wait_for_result(rospy.Duration(10.0)))
+        self.assertEqual(running.get_state(), GoalStatus.PREEMPTED)
+
+    def test_a_warm_start_is_faster_than_cold_and_falls_back_when_the_scene_changed(self):
+        self.assertEqual(self.solve(moved_target(0.0)).status, Solution.SUCCESS)
+        warm = self.solve(moved_target(0.3, warm_start=True))
+        cold = self.solve(moved_target(0.3))
+        for answer in (warm, cold):
+            self.assertEqual(answer.status, Solution.SUCCESS, answer.message)
+            final = {b.name: b.positions[-1] for b in answer.solution.bodies}["object"]
+            self.assertLess(math.hypot(final.x - 0.3, final.y - 10.0), 0.05)
+        self.assertTrue(warm.solution.statistics.warm_started)
+        self.assertEqual(warm.solution.statistics.start, "previous solution")
+        self.assertFalse(cold.solution.statistics.warm_started)
+        self.assertLess(warm.solution.statistics.ipopt_iterations,
+                        cold.solution.statistics.ipopt_iterations / 2)
+        self.assertLess(warm.solution.statistics.wall_time, cold.solution.statistics.wall_time)
+        changed = moved_target(0.0, warm_start=True)
+        changed.has_num_elements, changed.num_elements = True, 2
+        fallback = self.solve(changed)
+        self.assertEqual(fallback.status, Solution.SUCCESS, fallback.message)
+        self.assertFalse(fallback.solution.statistics.warm_started)
+        self.assertIn("cold start: the discretisations differ", fallback.message)
+
+    def test_an_accuracy_target_is_met_by_refining_and_every_rung_is_reported(self):
+        answer = self.solve(PlanRequest(target_accuracy=1e-3))
+        self.assertEqual(answer.status, Solution.SUCCESS, answer.message)
+        solution = answer.solution
+        self.assertTrue(solution.verified)
+        self.assertLessEqual(solution.verification_error, 1e-3)
+        rungs = solution.refinements
+        self.assertEqual([(r.num_stages, r.num_elements) for r in rungs], [(2, 3), (3, 3)])
+        self.assertGreater(rungs[0].verification_error, 1e-3)
+        self.assertEqual(rungs[-1].verification_error, solution.verification_error)
+        self.assertTrue(all(r.status == Solution.SUCCESS and r.wall_time > 0 for r in rungs))
+        self.assertLessEqual(sum(r.wall_time for r in rungs), solution.statistics.wall_time)
+
+    def test_an_accuracy_target_out_of_a_tiny_budget_is_not_a_success(self):
+        request = PlanRequest(target_accuracy=1e-3)
+        request.has_wall_time_budget, request.wall_time_budget = True, 0.05
+        answer = self.solve(request)
+        self.assertEqual(answer.status, Solution.TIMEOUT, answer.message)
+        self.assertIn("not met", answer.message)
+        self.assertGreaterEqual(len(answer.solution.refinements), 1)
+        self.assertTrue(finite_states(answer.solution))
+
+    def test_the_playback_moves_the_bodies_along_the_solution(self):
+        solution = self.solve(small_default(10)).solution
+        path = {b.name: b.positions for b in solution.bodies}["object"]
+        seen = []
+        subscriber = rospy.Subscriber(
+            "/fesd_trajopt/playback", MarkerArray,
+            lambda frame: seen.extend(m.pose.position for m in frame.markers if m.id == 2))
+        time.sleep(2.0)
+        subscriber.unregister()
+        self.assertGreater(len(seen), 20)  # 25 frames per second
+        xs, ys = [p.x for p in path], [p.y for p in path]
+        for p in seen:
+            self.assertTrue(min(xs) - 1e-9 <= p.x <= max(xs) + 1e-9)
+            self.assertTrue(min(ys) - 1e-9 <= p.y <= max(ys) + 1e-9)
+        self.assertGreater(len({(round(p.x, 6), round(p.y, 6)) for p in seen}), 5)  # it moves
+
+
+if __name__ == "__main__":
+    rostest.rosrun("fesd_trajopt", "plan_action", PlanAction)
