@@ -9,8 +9,8 @@ import actionlib
 import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
-from fesd_trajopt.msg import (BodySpec, PlanRequest, PlanTrajectoryAction, PlanTrajectoryGoal,
-                              Solution)
+from fesd_trajopt.msg import (BodySpec, PlanRequest, PlanTrajectoryAction,
+                              PlanTrajectoryActionFeedback, PlanTrajectoryGoal, Solution)
 from fesd_trajopt.srv import SolveTrajectory
 from geometry_msgs.msg import Point
 from visualization_msgs.msg import MarkerArray
@@ -32,6 +32,13 @@ def long_goal():
     return PlanTrajectoryGoal(request=PlanRequest(target_accuracy=1e-14))
 
 
+def wait_until(condition, timeout=10.0):
+    deadline = time.time() + timeout
+    while not condition() and time.time() < deadline:
+        time.sleep(0.01)
+    return condition()
+
+
 def finite_states(solution):
     return len(solution.states) > 0 and all(math.isfinite(v) for v in solution.states)
 
@@ -51,13 +58,19 @@ class PlanAction(unittest.TestCase):
         return client
 
     def test_an_empty_goal_solves_the_default_scene_with_feedback_after_every_relaxed_nlp(self):
+        # From the topic: the client drops feedback that arrives after its result.
         feedback = []
-        self.client.send_goal(PlanTrajectoryGoal(), feedback_cb=feedback.append)
+        subscriber = rospy.Subscriber(PLAN + "/feedback", PlanTrajectoryActionFeedback,
+                                      lambda message: feedback.append(message.feedback))
+        self.assertTrue(wait_until(lambda: subscriber.get_num_connections() > 0))
+        self.client.send_goal(PlanTrajectoryGoal())
         self.assertTrue(self.client.wait_for_result(rospy.Duration(120.0)))
         self.assertEqual(self.client.get_state(), GoalStatus.SUCCEEDED)
         result = self.client.get_result()
         self.assertEqual(result.status, Solution.SUCCESS, result.message)
         statistics = result.solution.statistics
+        wait_until(lambda: len(feedback) >= statistics.homotopy_steps, timeout=5.0)
+        subscriber.unregister()
         self.assertEqual(len(feedback), statistics.homotopy_steps)
         self.assertEqual([f.homotopy_step for f in feedback], list(range(1, len(feedback) + 1)))
         self.assertEqual([f.sigma for f in feedback], list(statistics.sigma))
@@ -77,10 +90,7 @@ class PlanAction(unittest.TestCase):
     def test_cancel_stops_within_a_second_and_ends_preempted_with_a_finite_trajectory(self):
         feedback = []
         self.client.send_goal(long_goal(), feedback_cb=feedback.append)
-        deadline = time.time() + 60.0
-        while not feedback and time.time() < deadline:
-            time.sleep(0.01)
-        self.assertTrue(feedback, "no feedback")
+        self.assertTrue(wait_until(lambda: feedback, timeout=60.0), "no feedback")
         cancelled_at = time.time()
         self.client.cancel_goal()
         self.assertTrue(self.client.wait_for_result(rospy.Duration(10.0)))
@@ -97,6 +107,7 @@ class PlanAction(unittest.TestCase):
         first, second = self.client, self.new_client()
         requests = [small_default(12), small_default(8)]
         first.send_goal(PlanTrajectoryGoal(request=requests[0]))
+        self.assertTrue(wait_until(lambda: first.get_state() == GoalStatus.ACTIVE))
         second.send_goal(PlanTrajectoryGoal(request=requests[1]))
         self.assertTrue(second.wait_for_result(rospy.Duration(120.0)))
         # The second goal waited for the first: by the time it is done, so is the first.
@@ -111,9 +122,7 @@ class PlanAction(unittest.TestCase):
         running, queued = self.client, self.new_client()
         running.send_goal(long_goal())
         queued.send_goal(PlanTrajectoryGoal(request=small_default(8)))
-        deadline = time.time() + 10.0
-        while running.get_state() != GoalStatus.ACTIVE and time.time() < deadline:
-            time.sleep(0.01)
+        wait_until(lambda: running.get_state() == GoalStatus.ACTIVE)
         time.sleep(0.5)  # the queued goal reaches the server
         self.assertEqual(running.get_state(), GoalStatus.ACTIVE)
         self.assertEqual(queued.get_state(), GoalStatus.PENDING)

@@ -26,14 +26,6 @@ HomotopyOptions guessHomotopy(const OcpOptions& options) {
   return homotopy;
 }
 
-/// MpccSolver::solve(previous, sigma) starts Ipopt at warm_start_mu_factor * sigma.
-HomotopyOptions previousHomotopy(const OcpOptions& options) {
-  HomotopyOptions homotopy = options.homotopy;
-  homotopy.ipopt.warm_start_mu_factor = options.warm_start_mu / options.warm_start_sigma;
-  homotopy.ipopt.warm_start_bound_push = options.warm_start_bound_push;
-  return homotopy;
-}
-
 }  // namespace
 
 OcpSolver::OcpSolver(OcpDefinition ocp, OcpOptions options)
@@ -41,8 +33,7 @@ OcpSolver::OcpSolver(OcpDefinition ocp, OcpOptions options)
       discretization_(discretize(ocp, options_.discretization)),
       solver_(options_.homotopy),
       fixed_grid_solver_(fixedGridHomotopy(options_)),
-      guess_solver_(guessHomotopy(options_)),
-      previous_solver_(previousHomotopy(options_)) {
+      guess_solver_(guessHomotopy(options_)) {
   if (discretization_->stepsAreFree() && options_.fixed_grid_until_sigma > 0.0) {
     DiscretizationOptions fixed = options_.discretization;
     fixed.switch_detection = false;
@@ -51,7 +42,7 @@ OcpSolver::OcpSolver(OcpDefinition ocp, OcpOptions options)
 }
 
 void OcpSolver::setMonitor(const SolveMonitor* monitor) {
-  for (MpccSolver* solver : {&solver_, &fixed_grid_solver_, &guess_solver_, &previous_solver_}) {
+  for (MpccSolver* solver : {&solver_, &fixed_grid_solver_, &guess_solver_}) {
     solver->setMonitor(monitor);
   }
 }
@@ -109,10 +100,10 @@ OcpSolution OcpSolver::solve(const OcpSolution& previous) {
   if (static_cast<int>(previous.report.solution.size()) != discretization_->nlp().numVariables()) {
     throw std::invalid_argument("OcpSolver: the warm start comes from a different discretisation");
   }
-  OcpSolution solution = finish(
-      previous_solver_.solve(discretization_->nlp(), previous.report, options_.warm_start_sigma,
-                             std::max(0.0, options_.homotopy.wall_time_budget)),
-      *discretization_);
+  OcpSolution solution =
+      finish(solver_.solve(discretization_->nlp(), previous.report, options_.warm_start_sigma,
+                           std::max(0.0, options_.homotopy.wall_time_budget)),
+             *discretization_);
   solution.start = OcpStart::kPrevious;
   return solution;
 }
@@ -143,7 +134,7 @@ OcpSolution OcpSolver::solve(const OcpSolution& previous, const TrajectoryGuess&
   if (warm.status == SolveStatus::kSuccess || interrupted(warm.status)) return warm;
   OcpSolution solution = after(warm, solveFromGuess(fallback, options_.homotopy.wall_time_budget -
                                                                   warm.report.wall_seconds));
-  solution.start = OcpStart::kGuessAfterPrevious;
+  if (solution.start == OcpStart::kGuess) solution.start = OcpStart::kGuessAfterPrevious;
   solution.message = "from the previous solution: " + statusName(warm.status) +
                      "; then from the guess: " + solution.message;
   return solution;

@@ -1,27 +1,58 @@
 #include "plan_action.h"
 
+#include <exception>
+
+#include <actionlib_msgs/GoalStatus.h>
 #include <fesd_trajopt/Solution.h>
 
 #include "fesd_trajopt/solver/stopwatch.h"
 
 namespace fesd_ros {
+namespace {
 
-PlanActionServer::PlanActionServer(ros::NodeHandle private_node, Plan plan)
+fesd_trajopt::PlanTrajectoryResult unsolved(uint8_t status, const std::string& message) {
+  fesd_trajopt::PlanTrajectoryResult result;
+  result.status = result.solution.status = status;
+  result.message = result.solution.message = message;
+  return result;
+}
+
+/// `node` with its callbacks on `queue`.
+ros::NodeHandle onQueue(ros::NodeHandle node, ros::CallbackQueue* queue) {
+  node.setCallbackQueue(queue);
+  return node;
+}
+
+}  // namespace
+
+PlanActionServer::PlanActionServer(const ros::NodeHandle& private_node, Plan plan)
     : plan_(std::move(plan)),
+      node_(onQueue(private_node, &callbacks_)),
       server_(
-          private_node, "plan", [this](GoalHandle goal) { receive(goal); },
-          [this](GoalHandle goal) { cancel(goal); }, false) {
+          node_, "plan", [this](GoalHandle goal) { receive(goal); },
+          [this](GoalHandle goal) { cancel(goal); }, false),
+      spinner_(1, &callbacks_) {
   worker_ = std::thread([this] { work(); });
 }
 
 PlanActionServer::~PlanActionServer() {
+  spinner_.stop();
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stopping_ = true;
     cancel_running_ = true;
+    for (GoalHandle& goal : queue_) {
+      goal.setAborted(unsolved(fesd_trajopt::Solution::CANCELLED, "the node is shutting down"));
+    }
+    queue_.clear();
   }
   wake_.notify_all();
   worker_.join();
+}
+
+void PlanActionServer::start() {
+  server_.start();
+  spinner_.start();
 }
 
 void PlanActionServer::receive(GoalHandle goal) {
@@ -40,14 +71,14 @@ void PlanActionServer::cancel(GoalHandle goal) {
   }
   for (auto queued = queue_.begin(); queued != queue_.end(); ++queued) {
     if (*queued == goal) {
-      fesd_trajopt::PlanTrajectoryResult result;
-      result.status = result.solution.status = fesd_trajopt::Solution::CANCELLED;
-      result.message = result.solution.message = "cancelled before it started";
-      queued->setCanceled(result, result.message);
+      queued->setCanceled(
+          unsolved(fesd_trajopt::Solution::CANCELLED, "cancelled before it started"));
       queue_.erase(queued);
       return;
     }
   }
+  // Not queued yet (a cancel can overtake the goal's own callback): the worker sees the goal
+  // RECALLING when it comes to it.
 }
 
 void PlanActionServer::work() {
@@ -59,10 +90,21 @@ void PlanActionServer::work() {
       if (stopping_) return;
       goal = queue_.front();
       queue_.pop_front();
+      if (goal.getGoalStatus().status == actionlib_msgs::GoalStatus::RECALLING) {
+        goal.setCanceled(
+            unsolved(fesd_trajopt::Solution::CANCELLED, "cancelled before it started"));
+        continue;
+      }
       running_ = goal.getGoalID().id;
       cancel_running_ = false;
     }
-    run(goal);
+    try {
+      run(goal);
+    } catch (...) {
+      // plan_ answers errors itself; this is actionlib or memory failing: end the goal anyway.
+      ROS_ERROR_STREAM("fesd_trajopt: plan goal " << goal.getGoalID().id << " failed unexpectedly");
+      goal.setAborted(unsolved(fesd_trajopt::Solution::SOLVER_ERROR, "internal error"));
+    }
     std::lock_guard<std::mutex> lock(mutex_);
     running_.clear();
   }

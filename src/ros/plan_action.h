@@ -10,7 +10,9 @@
 
 #include <actionlib/server/action_server.h>
 #include <fesd_trajopt/PlanTrajectoryAction.h>
+#include <ros/callback_queue.h>
 #include <ros/node_handle.h>
+#include <ros/spinner.h>
 
 #include "fesd_trajopt/solver/mpcc_solver.h"
 
@@ -18,20 +20,24 @@ namespace fesd_ros {
 
 /// The ~plan action. Goals queue and run one after the other in a worker thread, so a new goal
 /// never touches the one in progress. Feedback follows every relaxed NLP; cancelling the running
-/// goal stops its solve within one Ipopt iteration and ends it PREEMPTED with the best iterate;
-/// cancelling a queued goal ends it RECALLED without a solve.
+/// goal stops its solve at the next Ipopt iteration (a verification re-simulation in progress
+/// finishes first) and ends it PREEMPTED with the best iterate; cancelling a queued goal ends it
+/// RECALLED without a solve. The action's callbacks have their own queue and thread, so cancels
+/// are taken even while every spinner thread of the node serves a long service call.
 class PlanActionServer {
  public:
   /// Solves a request, watched by the monitor, into the result (status, message, solution).
   using Plan = std::function<void(const fesd_trajopt::PlanRequest&, const fesd::SolveMonitor&,
                                   fesd_trajopt::PlanTrajectoryResult&)>;
 
-  PlanActionServer(ros::NodeHandle private_node, Plan plan);
+  PlanActionServer(const ros::NodeHandle& private_node, Plan plan);
+  /// Cancels the running goal and aborts the queued ones.
   ~PlanActionServer();
-  /// Starts taking goals (once everything `plan` uses is ready).
-  void start() { server_.start(); }
   PlanActionServer(const PlanActionServer&) = delete;
   PlanActionServer& operator=(const PlanActionServer&) = delete;
+
+  /// Starts taking goals (once everything `plan` uses is ready).
+  void start();
 
  private:
   using Server = actionlib::ActionServer<fesd_trajopt::PlanTrajectoryAction>;
@@ -43,7 +49,10 @@ class PlanActionServer {
   void run(GoalHandle& goal);
 
   Plan plan_;
+  ros::CallbackQueue callbacks_;
+  ros::NodeHandle node_;  ///< the private node on callbacks_
   Server server_;
+  ros::AsyncSpinner spinner_;
   std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<GoalHandle> queue_;

@@ -31,12 +31,20 @@ geometry_msgs::Point positionAt(const fesd_trajopt::Solution& solution,
 
 }  // namespace
 
-Playback::Playback(ros::NodeHandle private_node, double rate, double frames_per_second)
-    : rate_(rate) {
+Playback::Playback(const ros::NodeHandle& private_node, double rate, double frames_per_second)
+    : rate_(rate), spinner_(1, &callbacks_) {
   if (rate_ <= 0.0) return;
-  publisher_ = private_node.advertise<visualization_msgs::MarkerArray>("playback", 1);
-  timer_ = private_node.createWallTimer(ros::WallDuration(1.0 / frames_per_second),
-                                        [this](const ros::WallTimerEvent&) { showFrame(); });
+  ros::NodeHandle node(private_node);
+  node.setCallbackQueue(&callbacks_);
+  publisher_ = node.advertise<visualization_msgs::MarkerArray>("playback", 1);
+  timer_ = node.createWallTimer(ros::WallDuration(1.0 / frames_per_second),
+                                [this](const ros::WallTimerEvent&) { showFrame(); });
+  spinner_.start();
+}
+
+Playback::~Playback() {
+  spinner_.stop();  // no frame may run while the members go
+  timer_.stop();
 }
 
 void Playback::play(const fesd_trajopt::Solution& solution, bool planar) {
@@ -49,7 +57,7 @@ void Playback::play(const fesd_trajopt::Solution& solution, bool planar) {
 
 void Playback::showFrame() {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (solution_.times.empty()) return;
+  if (solution_.times.empty() || publisher_.getNumSubscribers() == 0) return;
   const double duration = solution_.times.back() - solution_.times.front();
   const double period = duration + kPauseSeconds * rate_;
   const double played = (ros::WallTime::now() - start_).toSec() * rate_;

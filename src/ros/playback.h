@@ -4,18 +4,24 @@
 #include <string>
 
 #include <fesd_trajopt/Solution.h>
+#include <ros/callback_queue.h>
 #include <ros/node_handle.h>
+#include <ros/spinner.h>
 #include <ros/wall_timer.h>
 
 namespace fesd_ros {
 
 /// Plays the last solution back in rviz: the bodies on ~playback (visualization_msgs/
 /// MarkerArray, namespace "playback") at solution time rate * (wall time since the solve),
-/// between element boundaries linearly, then again after a pause of a second.
+/// between element boundaries linearly, then again after a pause of a second. Its timer has its
+/// own callback queue and thread, so frames keep coming while the node's spinner threads solve.
 class Playback {
  public:
   /// rate <= 0: no playback.
-  Playback(ros::NodeHandle private_node, double rate, double frames_per_second);
+  Playback(const ros::NodeHandle& private_node, double rate, double frames_per_second);
+  ~Playback();
+  Playback(const Playback&) = delete;
+  Playback& operator=(const Playback&) = delete;
   /// Starts playing `solution` from its beginning (planar: bodies as discs).
   void play(const fesd_trajopt::Solution& solution, bool planar);
 
@@ -23,6 +29,8 @@ class Playback {
   void showFrame();
 
   double rate_;
+  ros::CallbackQueue callbacks_;
+  ros::AsyncSpinner spinner_;
   ros::Publisher publisher_;
   ros::WallTimer timer_;
   std::mutex mutex_;

@@ -1,5 +1,6 @@
 // solveToAccuracy: what accuracy costs in time, answered per request.
 #include <algorithm>
+#include <limits>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -43,6 +44,7 @@ SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
     options.ocp.homotopy.wall_time_budget = std::max(0.0, budget - stopwatch.wallSeconds());
     SceneOutcome outcome = solveSceneTask(task, limits, options);
     if (!outcome.solved()) return outcome;  // refused or infeasible: no rung can change that
+    if (!outcome.verified) outcome.verification_error = std::numeric_limits<double>::infinity();
     rungs.push_back(
         {stages, elements, outcome.verification_error, rung_time.wallSeconds(), outcome.status});
     const bool success = outcome.status == SolveStatus::kSuccess;
@@ -57,25 +59,27 @@ SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
     if (met || cancelled || out_of_time) break;
   }
   best.refinements = rungs;
+  std::ostringstream message;
+  message << "accuracy target " << target_accuracy;
   if (met) {
-    std::ostringstream message;
-    message << "accuracy target " << target_accuracy << " met on rung " << rungs.size()
-            << " (n_s = " << rungs.back().stages << ", N_FE = " << rungs.back().elements
-            << "): verification error " << best.verification_error << "; " << best.message;
-    best.message = message.str();
-    return best;
+    message << " met on rung " << rungs.size() << " (n_s = " << rungs.back().stages
+            << ", N_FE = " << rungs.back().elements << "): verification error "
+            << best.verification_error;
+  } else if (cancelled) {
+    message << " not met: cancelled on rung " << rungs.size();
+  } else {
+    message << " not met: best verification error " << best.verification_error << " (of "
+            << rungs.size() << " rung(s), "
+            << (out_of_time ? "the wall-time budget spent" : "the ladder ended") << ")";
   }
+  best.message = message.str() + "; " + best.message;
+  // A successful rung that is not accurate enough says why it is no SUCCESS; a failed one keeps
+  // its own status.
   if (cancelled) {
     best.status = SolveStatus::kCancelled;
-    return best;
+  } else if (!met && best.status == SolveStatus::kSuccess) {
+    best.status = out_of_time ? SolveStatus::kTimeout : SolveStatus::kAccuracyNotMet;
   }
-  std::ostringstream message;
-  message << "accuracy target " << target_accuracy << " not met: best verification error "
-          << best.verification_error << " (of " << rungs.size() << " rung(s), "
-          << (out_of_time ? "the wall-time budget spent" : "the ladder ended") << "); "
-          << best.message;
-  best.message = message.str();
-  best.status = out_of_time ? SolveStatus::kTimeout : SolveStatus::kAccuracyNotMet;
   return best;
 }
 

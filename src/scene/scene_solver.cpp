@@ -68,7 +68,11 @@ std::string joined(const std::vector<std::string>& items) {
 }  // namespace
 
 std::string warmStartRefusal(const SceneOutcome& previous, const PlanStructure& now) {
-  if (!previous.solved() || previous.report.solution.empty()) return "no previous solution";
+  // Only a success is a solution of its NLP: an interrupted solve may hold another stage's point.
+  if (!previous.solved() || previous.status != SolveStatus::kSuccess ||
+      static_cast<int>(previous.report.solution.size()) != previous.structure.sizes.variables) {
+    return "no previous solution";
+  }
   return warmStartMismatch(previous.structure, now);
 }
 
@@ -95,7 +99,11 @@ std::string warmStartMismatch(const PlanStructure& previous, const PlanStructure
   }
   if (previous.sizes.variables != now.sizes.variables ||
       previous.sizes.constraints != now.sizes.constraints) {
-    return difference("the NLP sizes (variables)", previous.sizes.variables, now.sizes.variables);
+    const auto sizes = [](const NlpSizes& s) {
+      return std::to_string(s.variables) + " variables, " + std::to_string(s.constraints) +
+             " constraints";
+    };
+    return difference("the NLP sizes", sizes(previous.sizes), sizes(now.sizes));
   }
   return "";
 }
@@ -123,7 +131,7 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
   OcpSolution previous;
   if (warm) previous.report = options.previous->report;
   const OcpSolution solution = warm ? solver.solve(previous, plan) : solver.solve(plan);
-  if (solution.start == OcpStart::kGuessAfterPrevious) {
+  if (warm && solution.start != OcpStart::kPrevious) {
     outcome.cold_start_reason = "the warm solve failed";
   }
   outcome.status = solution.status;

@@ -206,7 +206,9 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
     for (const char* name :
          {"warm_start_bound_push", "warm_start_bound_frac", "warm_start_slack_bound_push",
           "warm_start_slack_bound_frac", "warm_start_mult_bound_push"}) {
-      options.SetNumericValue(name, settings_.warm_start_bound_push);
+      options.SetNumericValue(name, solve_settings.warm_start_bound_push > 0.0
+                                        ? solve_settings.warm_start_bound_push
+                                        : settings_.warm_start_bound_push);
     }
   } else {
     options.SetStringValue("mu_strategy", settings_.cold_start_mu_strategy);

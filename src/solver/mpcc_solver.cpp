@@ -232,7 +232,8 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
     report.complementarity_residual = problem.complementarityResidual(point.x.data());
     IpoptSession::SolveSettings settings =
         initialSettings(options_, problem, point.x, wall_time_budget, monitor_);
-    settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma_initial;
+    settings.warm_start_mu = options_.ipopt.previous_solution_mu;
+    settings.warm_start_bound_push = options_.ipopt.previous_solution_bound_push;
     settings.tolerance = options_.ipopt.tolerance;
     polish(*session_, options_, problem, point, settings, options_.polish_attempts, true, monitor_,
            report);
@@ -369,6 +370,10 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
              monitor_, report);
       if (polishedToTolerance(report, options_)) report.status = SolveStatus::kSuccess;
     }
+  }
+  // A stop asked for ends the solve whatever the NLP it reached said (e.g. a rescue polish).
+  if (report.status != SolveStatus::kSuccess && monitor_ != nullptr && monitor_->cancelled()) {
+    report.status = SolveStatus::kCancelled;
   }
   report.message = describe(report, options_.complementarity_tolerance);
   report.wall_seconds = stopwatch.wallSeconds();

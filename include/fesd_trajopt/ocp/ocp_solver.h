@@ -30,14 +30,6 @@ struct OcpOptions {
   /// A warm start (solve(previous)) first polishes the previous active set; when that fails, the
   /// homotopy begins at this sigma instead of sigma0, so the previous solution is not relaxed away.
   double warm_start_sigma = 1e-4;
-  /// Ipopt's mu_init and bound push of a warm start. The previous solution of a changed task
-  /// (e.g. the showcase's object target moved by 0.3: objective 90 at the old optimum against
-  /// 0.056) is far from the new optimum, and Ipopt needs room to move: with mu_init = 1e-10 and
-  /// the point pushed 1e-9 off its bounds it took 47 iterations; with 1e-11 (below Ipopt's
-  /// tolerance 1e-10, so no barrier reduction at the end) and a push of 1e-3, 15 (targets moved
-  /// by -0.3: 19 -> 15; the same task again: 11 -> 13). mu_init = 1e-7 cost more in every case.
-  double warm_start_mu = 1e-11;
-  double warm_start_bound_push = 1e-3;
   /// Solving from a TrajectoryGuess (e.g. a planned motion, solve(guess)): the FESD homotopy
   /// starts at this sigma on the guess, without the fixed-grid stage. Measured on the showcase:
   /// the cold start's first relaxed NLP (sigma = 1) wanders 150-500 Ipopt iterations and ends in
@@ -89,7 +81,8 @@ class OcpSolver {
   /// wall-time budget; the report then holds both.
   OcpSolution solve(const TrajectoryGuess& guess);
   /// Warm start, and when it fails (neither success nor interrupted) solve(fallback) within what
-  /// is left of the budget; the report then holds both.
+  /// is left of the budget; the report then holds both. The start names the guess's solve
+  /// kGuessAfterPrevious (a further fall back to the constant start stays kConstantAfterGuess).
   OcpSolution solve(const OcpSolution& previous, const TrajectoryGuess& fallback);
 
   const Discretization& discretization() const { return *discretization_; }
@@ -110,7 +103,7 @@ class OcpSolver {
   OcpOptions options_;
   std::unique_ptr<Discretization> discretization_;
   std::unique_ptr<Discretization> fixed_grid_;  ///< the standard method on the same grid
-  MpccSolver solver_, fixed_grid_solver_, guess_solver_, previous_solver_;
+  MpccSolver solver_, fixed_grid_solver_, guess_solver_;
 };
 
 /// Re-simulates a solution's controls with the FESD integrator (one step per control interval,

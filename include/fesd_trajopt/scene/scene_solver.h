@@ -70,8 +70,8 @@ struct SceneOutcome {
   }
 };
 
-/// Why `previous` cannot warm-start a task of structure `now` (none, or warmStartMismatch); "" when
-/// it can.
+/// Why `previous` cannot warm-start a task of structure `now` (not a successful solve, or
+/// warmStartMismatch); "" when it can.
 std::string warmStartRefusal(const SceneOutcome& previous, const PlanStructure& now);
 
 struct SceneSolveOptions {
