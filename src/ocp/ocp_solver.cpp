@@ -29,17 +29,12 @@ HomotopyOptions guessHomotopy(const OcpOptions& options) {
 }  // namespace
 
 OcpSolver::OcpSolver(OcpDefinition ocp, OcpOptions options)
-    : options_(std::move(options)),
-      discretization_(discretize(ocp, options_.discretization)),
+    : ocp_(std::move(ocp)),
+      options_(std::move(options)),
+      discretization_(discretize(ocp_, options_.discretization)),
       solver_(options_.homotopy),
       fixed_grid_solver_(fixedGridHomotopy(options_)),
-      guess_solver_(guessHomotopy(options_)) {
-  if (discretization_->stepsAreFree() && options_.fixed_grid_until_sigma > 0.0) {
-    DiscretizationOptions fixed = options_.discretization;
-    fixed.switch_detection = false;
-    fixed_grid_ = discretize(ocp, fixed);
-  }
-}
+      guess_solver_(guessHomotopy(options_)) {}
 
 void OcpSolver::setMonitor(const SolveMonitor* monitor) {
   for (MpccSolver* solver : {&solver_, &fixed_grid_solver_, &guess_solver_}) {
@@ -68,10 +63,17 @@ OcpSolution OcpSolver::solve() {
 }
 
 OcpSolution OcpSolver::solveFromConstant(double wall_time_budget) {
-  if (!fixed_grid_) {
+  if (!discretization_->stepsAreFree() || options_.fixed_grid_until_sigma <= 0.0) {
     return finish(solver_.solve(discretization_->nlp(), discretization_->constantGuess(), -1.0,
                                 std::max(0.0, wall_time_budget)),
                   *discretization_);
+  }
+  // Built on first use (3-5 ms on the showcase): solves from a guess or a previous solution
+  // rarely come here.
+  if (!fixed_grid_) {
+    DiscretizationOptions fixed = options_.discretization;
+    fixed.switch_detection = false;
+    fixed_grid_ = discretize(ocp_, fixed);
   }
   MpccReport fixed = fixed_grid_solver_.solve(fixed_grid_->nlp(), fixed_grid_->constantGuess(),
                                               -1.0, std::max(0.0, wall_time_budget));

@@ -1,19 +1,17 @@
 #include "plan_action.h"
 
-#include <exception>
-
 #include <actionlib_msgs/GoalStatus.h>
 #include <fesd_trajopt/Solution.h>
 
 #include "fesd_trajopt/solver/stopwatch.h"
+#include "solution_message.h"
 
 namespace fesd_ros {
 namespace {
 
 fesd_trajopt::PlanTrajectoryResult unsolved(uint8_t status, const std::string& message) {
   fesd_trajopt::PlanTrajectoryResult result;
-  result.status = result.solution.status = status;
-  result.message = result.solution.message = message;
+  setUnsolved(result, status, message);
   return result;
 }
 

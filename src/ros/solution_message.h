@@ -14,6 +14,14 @@ namespace fesd_ros {
 uint8_t statusCode(fesd::SolveStatus status);
 constexpr uint8_t kInvalidRequest = fesd_trajopt::Solution::INVALID_REQUEST;
 
+/// An answer (service response or action result) without a solve: the status and why, also in
+/// its solution.
+template <class Answer>
+void setUnsolved(Answer& answer, uint8_t status, const std::string& message) {
+  answer.status = answer.solution.status = status;
+  answer.message = answer.solution.message = message;
+}
+
 /// The Solution message of a scene trajectory: times, each body's positions and controls, the
 /// full state, switches (named by the modelled pairs), statistics and pair decisions.
 fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,

@@ -44,13 +44,9 @@ double wallTimeBudget(const Request& request, const NodeConfig& config) {
   return request.has_wall_time_budget ? request.wall_time_budget : config.wall_time_budget;
 }
 
-/// An answer without a solve: the status and why, also in the solution.
 template <class Response>
 void answerUnsolved(Response& response, uint8_t status, const std::string& message) {
-  response.status = status;
-  response.message = message;
-  response.solution.status = status;
-  response.solution.message = message;
+  setUnsolved(response, status, message);
   ROS_WARN_STREAM("fesd_trajopt: " << message);
 }
 

@@ -327,9 +327,6 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
       settled_candidate = active_set;
     }
     report.status = converged ? SolveStatus::kComplementarityNotMet : failureStatus(outcome.status);
-    if (report.status == SolveStatus::kTimeout && monitor_ != nullptr && monitor_->cancelled()) {
-      report.status = SolveStatus::kCancelled;
-    }
     if (interrupted(report.status)) break;
     consecutive_infeasible =
         report.status == SolveStatus::kInfeasible ? consecutive_infeasible + 1 : 0;

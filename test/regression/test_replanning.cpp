@@ -72,11 +72,11 @@ TEST(Replanning, AWarmStartIsRefusedWithAReasonWhenTheStructureChanged) {
                 .find("the horizons differ"),
             std::string::npos);
   fesd::SceneOutcome refused;
-  EXPECT_EQ(fesd::warmStartRefusal(refused, first.structure), "no previous solution");
+  EXPECT_EQ(fesd::warmStartRefusal(refused, first), "no previous solution");
   fesd::SceneOutcome interrupted = first;  // a timed-out solve may hold another stage's point
   interrupted.status = fesd::SolveStatus::kTimeout;
-  EXPECT_EQ(fesd::warmStartRefusal(interrupted, first.structure), "no previous solution");
-  EXPECT_EQ(fesd::warmStartRefusal(first, first.structure), "");
+  EXPECT_EQ(fesd::warmStartRefusal(interrupted, first), "no previous solution");
+  EXPECT_EQ(fesd::warmStartRefusal(first, first), "");
 }
 
 TEST(Replanning, TheMonitorSeesEveryRelaxedNlpAndItsIterationsAddUp) {

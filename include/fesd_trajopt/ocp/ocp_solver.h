@@ -100,6 +100,7 @@ class OcpSolver {
   /// The solution read from `report`, whose point belongs to `source`.
   OcpSolution finish(MpccReport report, const Discretization& source) const;
 
+  OcpDefinition ocp_;
   OcpOptions options_;
   std::unique_ptr<Discretization> discretization_;
   std::unique_ptr<Discretization> fixed_grid_;  ///< the standard method on the same grid

@@ -18,15 +18,14 @@ struct NlpSizes {
   int variables = 0, constraints = 0, complementarities = 0;
 };
 
-/// What a warm start needs unchanged: the moving bodies, the modelled pairs, the discretisation
-/// and the NLP it became. Targets, initial positions, bounds and weights may differ.
+/// What a warm start needs unchanged besides the NLP's sizes: the moving bodies, the modelled
+/// pairs and the discretisation. Targets, initial positions, bounds and weights may differ.
 struct PlanStructure {
   std::vector<std::string> moving_bodies;   ///< "name (radius r, actuated|passive)"
   std::vector<std::string> modelled_pairs;  ///< DiscScene::pairName
   double horizon = 0.0;
   int intervals = 0, elements = 0, stages = 0;
   bool switch_detection = true;
-  NlpSizes sizes;
 };
 
 /// Why a solution of structure `previous` cannot warm-start a task of structure `now`; "" when
@@ -70,15 +69,16 @@ struct SceneOutcome {
   }
 };
 
-/// Why `previous` cannot warm-start a task of structure `now` (not a successful solve, or
-/// warmStartMismatch); "" when it can.
-std::string warmStartRefusal(const SceneOutcome& previous, const PlanStructure& now);
+/// Why `previous` cannot warm-start `now` (a task whose NLP is built: structure and sizes set):
+/// not a successful solve, warmStartMismatch, or other NLP sizes; "" when it can.
+std::string warmStartRefusal(const SceneOutcome& previous, const SceneOutcome& now);
 
 struct SceneSolveOptions {
   OcpOptions ocp;           ///< discretisation and homotopy (its wall-time budget covers all)
   bool prune_pairs = true;  ///< model only the pairs that can touch (decidePairs); else all
   bool verify = false;      ///< re-simulate the optimal controls finely (resimulationError)
-  /// The re-simulation's discretisation; its budget is what the solve left of the total.
+  /// The re-simulation's discretisation, raised to at least the solve's stages and twice its
+  /// elements per interval; its budget is what the solve left of the total.
   DiscretizationOptions verification;
   /// Warm start from this outcome of an earlier solve when warmStartMismatch allows it (falling
   /// back to the push plan if the warm solve fails); nullptr: cold. Not owned.
@@ -97,9 +97,8 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
 /// more stage at a time up to limits.max_stages, then one more element per interval at a time up
 /// to limits.max_elements, until a rung's verification_error <= target_accuracy (kSuccess) or the
 /// wall-time budget is spent (kTimeout) or the ladder ends (kAccuracyNotMet). Returns the rung
-/// that met the target, else the most accurate one, with every rung in `refinements`. Each
-/// rung is verified against a re-simulation at least as fine as options.verification and with
-/// at least the rung's stages and twice its elements.
+/// that met the target, else the most accurate successful one (or a failed first rung), with
+/// every rung in `refinements`.
 SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
                              SceneSolveOptions options, double target_accuracy);
 
