@@ -45,6 +45,8 @@ def main():
     for event in solution.switches:
         kind = "contact" if event.kind == SwitchEvent.CONTACT else "release"
         print("  %-7s %s/%s at t = %.4f" % (kind, event.first, event.second, event.time))
+    for pair in solution.checked_pairs:
+        print("  checked %s/%s: %s" % (pair.first, pair.second, pair.reason))
     for pair in solution.pruned_pairs:
         print("  pruned  %s/%s: %s" % (pair.first, pair.second, pair.reason))
     stats = solution.statistics

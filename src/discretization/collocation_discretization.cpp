@@ -46,10 +46,42 @@ std::vector<double> CollocationDiscretization::adoptedGuess(
   return x;
 }
 
+std::vector<double> CollocationDiscretization::guessFromTrajectory(
+    const Trajectory& trajectory) const {
+  const bool sizes_match = static_cast<int>(trajectory.elements.size()) == numElements() &&
+                           static_cast<int>(trajectory.states.size()) == numElements() + 1 &&
+                           trajectory.controls.size() == grid_.controls.size() &&
+                           std::all_of(trajectory.elements.begin(), trajectory.elements.end(),
+                                       [&](const ElementValues& element) {
+                                         return element.stage_states.rows() == nx_ &&
+                                                element.stage_states.cols() == tableau_.stages &&
+                                                element.stage_multipliers.rows() == numPairs();
+                                       });
+  if (!sizes_match) {
+    throw std::invalid_argument("guessFromTrajectory: the trajectory's grid or sizes differ");
+  }
+  std::vector<double> x = nlp_.initialGuess();  // holds the start point's data
+  for (int e = 0; e < numElements(); ++e) {
+    const ElementValues& element = trajectory.elements[e];
+    const int step = grid_.steps[e];
+    x[step] = std::clamp(element.step, nlp_.variableLower(step), nlp_.variableUpper(step));
+    for (int i = 0; i < tableau_.stages; ++i) {
+      Eigen::Map<Eigen::VectorXd>(x.data() + grid_.stage_states[e][i], nx_) =
+          element.stage_states.col(i);
+    }
+    Eigen::Map<Eigen::VectorXd>(x.data() + grid_.end_states[e], nx_) = trajectory.states[e + 1];
+  }
+  guessControls(nlp_, grid_, nu_, trajectory.controls, x);
+  guessPairValues(trajectory, x);
+  completeDependentVariables(x);
+  return x;
+}
+
 Trajectory CollocationDiscretization::extract(const double* x, double start_time,
                                               double activity_tolerance,
                                               double penetration_tolerance) const {
   Trajectory trajectory = gridTrajectory(x, grid_, ocp_, start_state_, numPairs(), start_time);
+  trajectory.stage_nodes = tableau_.c;
   readPairValues(x, trajectory);
   classifySwitches(trajectory, activeAtStart(x, trajectory, activity_tolerance), activity_tolerance,
                    penetration_tolerance);

@@ -319,23 +319,33 @@ std::vector<double> PdsDiscretization::guessFrom(const TrajectoryGuess& guess) c
   guessGridPoints(nlp_, grid_, tableau_, nominal_step_, nx_, nu_, guess, x);
   for (int e = 0; e < numElements(); ++e) {
     for (int i = 0; i < tableau_.stages; ++i) {
-      const StagePoint& point = stages_[e][i];
-      model_->constraints()->evaluate(x.data() + point.x, x.data() + point.s);
-      const Eigen::VectorXd lambda = guess.multipliers
-                                         ? guess.multipliers((e + tableau_.c(i)) * nominal_step_)
-                                         : Eigen::VectorXd::Zero(nc_);
-      if (lambda.size() != nc_) {
-        throw std::invalid_argument("TrajectoryGuess: multipliers of the wrong size");
-      }
-      for (int k = 0; k < nc_; ++k) {
-        // A planned path may graze into a constraint; its lifted value stays within its bound.
-        x[point.s + k] = std::max(x[point.s + k], 0.0);
-        x[point.lambda + k] = std::max(lambda(k), 0.0);
-      }
+      setPairGuess(stages_[e][i],
+                   guess.multipliers ? guess.multipliers((e + tableau_.c(i)) * nominal_step_)
+                                     : Eigen::VectorXd::Zero(nc_),
+                   x);
     }
   }
   completeDependentVariables(x);
   return x;
+}
+
+void PdsDiscretization::guessPairValues(const Trajectory& trajectory,
+                                        std::vector<double>& x) const {
+  for (int e = 0; e < numElements(); ++e) {
+    for (int i = 0; i < tableau_.stages; ++i) {
+      setPairGuess(stages_[e][i], trajectory.elements[e].stage_multipliers.col(i), x);
+    }
+  }
+}
+
+void PdsDiscretization::setPairGuess(const StagePoint& point, const Eigen::VectorXd& lambda,
+                                     std::vector<double>& x) const {
+  if (lambda.size() != nc_) throw std::invalid_argument("guess: multipliers of the wrong size");
+  model_->constraints()->evaluate(x.data() + point.x, x.data() + point.s);
+  for (int k = 0; k < nc_; ++k) {
+    x[point.s + k] = std::max(x[point.s + k], 0.0);
+    x[point.lambda + k] = std::max(lambda(k), 0.0);
+  }
 }
 
 std::vector<double> PdsDiscretization::translatedGuess(

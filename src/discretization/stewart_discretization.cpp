@@ -298,11 +298,19 @@ std::vector<double> StewartDiscretization::constantGuess(
 std::vector<double> StewartDiscretization::guessFrom(const TrajectoryGuess& guess) const {
   std::vector<double> x = nlp_.initialGuess();  // holds the start state
   guessGridPoints(nlp_, grid_, tableau_, nominal_step_, nx_, nu_, guess, x);
+  setModesOfStates(x);
+  completeDependentVariables(x);
+  return x;
+}
+
+void StewartDiscretization::guessPairValues(const Trajectory&, std::vector<double>& x) const {
+  setModesOfStates(x);
+}
+
+void StewartDiscretization::setModesOfStates(std::vector<double>& x) const {
   for (const Element& element : elements_) {
     for (const StagePoint& point : element.stages) setModeOfState(x, point);
   }
-  completeDependentVariables(x);
-  return x;
 }
 
 std::vector<double> StewartDiscretization::translatedGuess(

@@ -46,34 +46,63 @@ std::vector<SwitchEvent> detectSwitches(const std::vector<ElementValues>& elemen
   return events;
 }
 
+Eigen::VectorXd collocationState(const Eigen::VectorXd& nodes, const Eigen::VectorXd& start_state,
+                                 const Eigen::MatrixXd& stage_states, double t) {
+  const int points = static_cast<int>(nodes.size()) + 1;
+  auto node = [&](int i) { return i == 0 ? 0.0 : nodes(i - 1); };
+  Eigen::VectorXd state = Eigen::VectorXd::Zero(start_state.size());
+  for (int i = 0; i < points; ++i) {  // Lagrange basis polynomial i at t
+    double basis = 1.0;
+    for (int j = 0; j < points; ++j) {
+      if (j != i) basis *= (t - node(j)) / (node(i) - node(j));
+    }
+    state += basis * (i == 0 ? start_state : Eigen::VectorXd(stage_states.col(i - 1)));
+  }
+  return state;
+}
+
+std::vector<Eigen::VectorXd> densePath(const Trajectory& trajectory, int samples_per_gap) {
+  std::vector<Eigen::VectorXd> path;
+  const Eigen::VectorXd& nodes = trajectory.stage_nodes;
+  for (size_t e = 0; e < trajectory.elements.size(); ++e) {
+    const ElementValues& element = trajectory.elements[e];
+    const Eigen::VectorXd& start = trajectory.states[e];
+    if (e == 0) path.push_back(start);  // later starts are the previous elements' ends
+    double previous_node = 0.0;
+    for (int i = 0; i < nodes.size(); ++i) {
+      for (int sample = 1; sample <= samples_per_gap; ++sample) {
+        const double t = previous_node + (nodes(i) - previous_node) * sample /
+                                             static_cast<double>(samples_per_gap + 1);
+        path.push_back(collocationState(nodes, start, element.stage_states, t));
+      }
+      path.push_back(element.stage_states.col(i));
+      previous_node = nodes(i);
+    }
+    if (nodes.size() == 0 || nodes(nodes.size() - 1) < 1.0)
+      path.push_back(trajectory.states[e + 1]);
+  }
+  if (trajectory.elements.empty() && !trajectory.states.empty())
+    path.push_back(trajectory.states[0]);
+  return path;
+}
+
 Eigen::VectorXd lowestConstraintBetweenStages(const SmoothFunction& constraints,
                                               const Eigen::VectorXd& nodes,
                                               const Eigen::VectorXd& start_state,
                                               const Eigen::MatrixXd& stage_states,
                                               int samples_per_gap) {
-  const int points = static_cast<int>(nodes.size()) + 1;
-  Eigen::VectorXd tau(points);
+  Eigen::VectorXd tau(nodes.size() + 1);
   tau << 0.0, nodes;
-  Eigen::MatrixXd values(start_state.size(), points);
-  values << start_state, stage_states;
   Eigen::VectorXd lowest =
       Eigen::VectorXd::Constant(constraints.outputSize(), std::numeric_limits<double>::infinity());
   const SparsityPattern& pattern = constraints.jacobianPattern();
-  Eigen::VectorXd state(start_state.size()), c(constraints.outputSize()),
-      gradient_norm(constraints.outputSize());
+  Eigen::VectorXd c(constraints.outputSize()), gradient_norm(constraints.outputSize());
   std::vector<double> jacobian(pattern.nonzeros());
-  for (int gap = 0; gap + 1 < points; ++gap) {
+  for (int gap = 0; gap + 1 < tau.size(); ++gap) {
     for (int sample = 1; sample <= samples_per_gap; ++sample) {
       const double t =
           tau(gap) + (tau(gap + 1) - tau(gap)) * sample / static_cast<double>(samples_per_gap + 1);
-      state.setZero();
-      for (int i = 0; i < points; ++i) {  // Lagrange basis polynomial i at t
-        double basis = 1.0;
-        for (int j = 0; j < points; ++j) {
-          if (j != i) basis *= (t - tau(j)) / (tau(i) - tau(j));
-        }
-        state += basis * values.col(i);
-      }
+      const Eigen::VectorXd state = collocationState(nodes, start_state, stage_states, t);
       constraints.evaluate(state.data(), c.data());
       constraints.evaluateJacobian(state.data(), jacobian.data());
       gradient_norm.setZero();

@@ -42,7 +42,7 @@ void OcpSolver::setMonitor(const SolveMonitor* monitor) {
   }
 }
 
-std::string startName(OcpStart start, const std::string& guess) {
+std::string startName(OcpStart start, const std::string& guess, const std::string& trajectory) {
   switch (start) {
     case OcpStart::kConstant:
       return "constant";
@@ -54,6 +54,10 @@ std::string startName(OcpStart start, const std::string& guess) {
       return "previous solution";
     case OcpStart::kGuessAfterPrevious:
       return guess + " after a failed warm start";
+    case OcpStart::kTrajectory:
+      return trajectory;
+    case OcpStart::kGuessAfterTrajectory:
+      return guess + " after a failed solve from the " + trajectory;
   }
   return "unknown";
 }
@@ -114,11 +118,14 @@ OcpSolution OcpSolver::solve(const TrajectoryGuess& guess) {
   return solveFromGuess(guess, options_.homotopy.wall_time_budget);
 }
 
+OcpSolution OcpSolver::solveFromPoint(const std::vector<double>& point, double wall_time_budget) {
+  return finish(guess_solver_.solve(discretization_->nlp(), point, options_.guess_sigma,
+                                    std::max(0.0, wall_time_budget)),
+                *discretization_);
+}
+
 OcpSolution OcpSolver::solveFromGuess(const TrajectoryGuess& guess, double wall_time_budget) {
-  OcpSolution from_guess =
-      finish(guess_solver_.solve(discretization_->nlp(), discretization_->guessFrom(guess),
-                                 options_.guess_sigma, std::max(0.0, wall_time_budget)),
-             *discretization_);
+  OcpSolution from_guess = solveFromPoint(discretization_->guessFrom(guess), wall_time_budget);
   from_guess.start = OcpStart::kGuess;
   if (from_guess.status == SolveStatus::kSuccess || interrupted(from_guess.status)) {
     return from_guess;
@@ -132,13 +139,26 @@ OcpSolution OcpSolver::solveFromGuess(const TrajectoryGuess& guess, double wall_
 }
 
 OcpSolution OcpSolver::solve(const OcpSolution& previous, const TrajectoryGuess& fallback) {
-  OcpSolution warm = solve(previous);
-  if (warm.status == SolveStatus::kSuccess || interrupted(warm.status)) return warm;
-  OcpSolution solution = after(warm, solveFromGuess(fallback, options_.homotopy.wall_time_budget -
-                                                                  warm.report.wall_seconds));
-  if (solution.start == OcpStart::kGuess) solution.start = OcpStart::kGuessAfterPrevious;
-  solution.message = "from the previous solution: " + statusName(warm.status) +
-                     "; then from the guess: " + solution.message;
+  return orFallback(solve(previous), fallback, OcpStart::kGuessAfterPrevious,
+                    "from the previous solution");
+}
+
+OcpSolution OcpSolver::solve(const Trajectory& trajectory, const TrajectoryGuess& fallback) {
+  OcpSolution from_trajectory = solveFromPoint(discretization_->guessFromTrajectory(trajectory),
+                                               options_.homotopy.wall_time_budget);
+  from_trajectory.start = OcpStart::kTrajectory;
+  return orFallback(std::move(from_trajectory), fallback, OcpStart::kGuessAfterTrajectory,
+                    "from the trajectory");
+}
+
+OcpSolution OcpSolver::orFallback(OcpSolution first, const TrajectoryGuess& fallback,
+                                  OcpStart fallback_start, const std::string& first_name) {
+  if (first.status == SolveStatus::kSuccess || interrupted(first.status)) return first;
+  OcpSolution solution = after(first, solveFromGuess(fallback, options_.homotopy.wall_time_budget -
+                                                                   first.report.wall_seconds));
+  if (solution.start == OcpStart::kGuess) solution.start = fallback_start;
+  solution.message =
+      first_name + ": " + statusName(first.status) + "; then from the guess: " + solution.message;
   return solution;
 }
 
@@ -159,11 +179,15 @@ OcpSolution OcpSolver::finish(MpccReport report, const Discretization& source) c
   return solution;
 }
 
+SimulationResult resimulate(const OcpDefinition& ocp, const std::vector<Eigen::VectorXd>& controls,
+                            const SimulationOptions& fine) {
+  return FesdIntegrator(ocp.model, fine)
+      .simulate(ocp.initial_state, ocp.horizon, ocp.num_intervals, controls);
+}
+
 double resimulationError(const OcpDefinition& ocp, const OcpSolution& solution,
                          const SimulationOptions& fine) {
-  FesdIntegrator integrator(ocp.model, fine);
-  const SimulationResult result = integrator.simulate(
-      ocp.initial_state, ocp.horizon, ocp.num_intervals, solution.trajectory.controls);
+  const SimulationResult result = resimulate(ocp, solution.trajectory.controls, fine);
   if (result.status != SolveStatus::kSuccess) return std::numeric_limits<double>::infinity();
   return (result.trajectory.finalState() - solution.trajectory.finalState()).norm();
 }

@@ -1,5 +1,6 @@
 #include "node_config.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include <XmlRpcValue.h>
@@ -75,6 +76,17 @@ NodeConfig loadNodeConfig(const ros::NodeHandle& node) {
   node.param("verification/num_stages", c.verification_stages, c.verification_stages);
   node.param("verification/num_elements", c.verification_elements, c.verification_elements);
   node.param("playback_rate", c.playback_rate, c.playback_rate);
+  std::string pairs = "lazy";
+  node.param("contact_pairs", pairs, pairs);
+  if (pairs != "lazy" && pairs != "all_in_reach") {
+    throw std::runtime_error("parameter contact_pairs must be lazy or all_in_reach, got '" + pairs +
+                             "'");
+  }
+  c.lazy_pairs = pairs == "lazy";
+  node.param("contact_margin", c.contact_margin, c.contact_margin);
+  if (!(c.contact_margin >= 0.0) || !std::isfinite(c.contact_margin)) {
+    throw std::runtime_error("parameter contact_margin must be finite and >= 0");
+  }
   node.param("limits/max_bodies", c.limits.max_bodies, c.limits.max_bodies);
   node.param("limits/max_obstacles", c.limits.max_obstacles, c.limits.max_obstacles);
   node.param("limits/max_walls", c.limits.max_walls, c.limits.max_walls);

@@ -32,7 +32,9 @@ struct NodeConfig {
   double wall_time_budget = 120.0;
   int verification_stages = 3;
   int verification_elements = 6;
-  double playback_rate = 1.0;  ///< ~playback at this many times real time; 0: off
+  double playback_rate = 1.0;   ///< ~playback at this many times real time; 0: off
+  bool lazy_pairs = true;       ///< ~contact_pairs: lazy (default) or all_in_reach
+  double contact_margin = 0.1;  ///< ~contact_margin: lazy pairs' margin, relative to the radii
   fesd::TaskLimits limits;
   std::map<std::string, BodyConfig> bodies;
   std::string scene_urdf;  ///< ~scene_urdf: the default scene

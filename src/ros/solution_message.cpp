@@ -29,6 +29,7 @@ fesd_trajopt::ContactPair pairMessage(const fesd::DiscScene& scene,
   message.first = scene.bodies()[decision.pair.body].name;
   message.second = otherName(scene, decision.pair);
   message.reason = decision.reason;
+  message.min_distance = decision.min_distance;
   return message;
 }
 
@@ -150,7 +151,9 @@ fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
   }
   std::vector<fesd::ContactPair> modelled;
   for (const fesd::PairDecision& decision : decisions) {
-    (decision.modelled ? solution.modeled_pairs : solution.pruned_pairs)
+    (decision.modelled  ? solution.modeled_pairs
+     : decision.checked ? solution.checked_pairs
+                        : solution.pruned_pairs)
         .push_back(pairMessage(scene, decision));
     if (decision.modelled) modelled.push_back(decision.pair);
   }

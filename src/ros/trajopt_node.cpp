@@ -176,6 +176,13 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
   options.ocp.homotopy.complementarity_tolerance = tolerance;
   options.ocp.homotopy.wall_time_budget = budget;
   options.verify = request.verify;
+  if (request.contact_pairs > fesd_trajopt::PlanRequest::PAIRS_ALL_IN_REACH) {
+    return refuse(answer, "unknown contact_pairs " + std::to_string(request.contact_pairs));
+  }
+  options.lazy_pairs = request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_DEFAULT
+                           ? config_.lazy_pairs
+                           : request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_LAZY;
+  options.pair_margin = config_.contact_margin;
   options.verification.num_stages = config_.verification_stages;
   options.verification.num_elements = config_.verification_elements;
   options.monitor = monitor;
@@ -194,14 +201,17 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
   ROS_INFO_STREAM("fesd_trajopt: solved "
                   << outcome.moving_bodies.size() << " moving of " << task.scene.bodies().size()
                   << " bodies, " << outcome.modelledPairs() << " modelled / "
-                  << outcome.decisions.size() - outcome.modelledPairs() << " pruned pairs, "
+                  << outcome.checkedPairs() << " checked / "
+                  << outcome.decisions.size() - outcome.modelledPairs() - outcome.checkedPairs()
+                  << " pruned pairs in " << outcome.pair_rounds << " round(s), "
                   << task.num_intervals << " intervals x " << outcome.structure.elements
                   << " elements, n_s = " << outcome.structure.stages);
   fesd_trajopt::Solution& solution = answer.solution;
   solution = sceneSolution(task, outcome.decisions, outcome.trajectory, outcome.report);
   solution.status = statusCode(outcome.status);
   solution.message = outcome.message;  // with the warning on unresolved switches
-  solution.statistics.start = fesd::startName(outcome.start, "push plan");
+  solution.statistics.start = fesd::startName(outcome.start, "push plan", "previous round");
+  solution.statistics.pair_rounds = outcome.pair_rounds;
   solution.statistics.warm_started = outcome.start == fesd::OcpStart::kPrevious;
   solution.statistics.nlp_variables = outcome.sizes.variables;
   solution.statistics.nlp_constraints = outcome.sizes.constraints;

@@ -21,6 +21,37 @@ Eigen::VectorXd fullState(const SceneTask& full, const MovingPart& part,
   return state;
 }
 
+/// A state of the moving part: its bodies' positions in a full scene state.
+Eigen::VectorXd partState(const SceneTask& full, const MovingPart& part,
+                          const Eigen::VectorXd& state) {
+  const int dim = full.scene.dimension();
+  Eigen::VectorXd moving(part.task.scene.stateSize());
+  for (size_t i = 0; i < part.bodies.size(); ++i) {
+    moving.segment(part.task.scene.stateIndex(static_cast<int>(i)), dim) =
+        state.segment(full.scene.stateIndex(part.bodies[i]), dim);
+  }
+  return moving;
+}
+
+/// Per modelled pair of the part, its index in `pairs`, or -1.
+std::vector<int> pairSources(const MovingPart& part, const std::vector<ContactPair>& pairs) {
+  std::vector<int> sources;
+  for (const ContactPair& pair : part.modelled_in_task) {
+    const auto found = std::find(pairs.begin(), pairs.end(), pair);
+    sources.push_back(found == pairs.end() ? -1 : static_cast<int>(found - pairs.begin()));
+  }
+  return sources;
+}
+
+/// The rows of `values` (one per pair of `pairs`) that the part's modelled pairs take.
+Eigen::MatrixXd pairRows(const std::vector<int>& sources, const Eigen::MatrixXd& values) {
+  Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(sources.size(), values.cols());
+  for (size_t k = 0; k < sources.size(); ++k) {
+    if (sources[k] >= 0) rows.row(k) = values.row(sources[k]);
+  }
+  return rows;
+}
+
 }  // namespace
 
 MovingPart movingPart(const SceneTask& task, const std::vector<PairDecision>& decisions) {
@@ -44,6 +75,7 @@ MovingPart movingPart(const SceneTask& task, const std::vector<PairDecision>& de
     part.task.scene.bodies().push_back(task.scene.bodies()[b]);
     part.task.bodies.push_back(task.bodies[b]);
   }
+  part.modelled_in_task = modelled;
   for (ContactPair pair : modelled) {
     pair.body = new_index[pair.body];
     if (pair.kind == ContactPair::Kind::kBody) pair.other = new_index[pair.other];
@@ -62,6 +94,42 @@ Trajectory fullSceneTrajectory(const SceneTask& full, const MovingPart& part,
       stages.col(j) = fullState(full, part, element.stage_states.col(j));
     }
     element.stage_states = stages;
+  }
+  return result;
+}
+
+TrajectoryGuess partGuess(const SceneTask& full, const MovingPart& part,
+                          const TrajectoryGuess& guess, const std::vector<ContactPair>& pairs) {
+  TrajectoryGuess result;
+  result.controls = guess.controls;
+  result.state = [full, part, state = guess.state](double t) {
+    return partState(full, part, state(t));
+  };
+  if (guess.multipliers) {
+    result.multipliers = [sources = pairSources(part, pairs),
+                          multipliers = guess.multipliers](double t) -> Eigen::VectorXd {
+      return pairRows(sources, multipliers(t));
+    };
+  }
+  return result;
+}
+
+Trajectory partTrajectory(const SceneTask& full, const MovingPart& part,
+                          const Trajectory& trajectory, const std::vector<ContactPair>& pairs) {
+  const std::vector<int> sources = pairSources(part, pairs);
+  Trajectory result = trajectory;
+  result.switches.clear();
+  result.unresolved_switches.clear();
+  for (Eigen::VectorXd& x : result.states) x = partState(full, part, x);
+  for (ElementValues& element : result.elements) {
+    Eigen::MatrixXd stages(part.task.scene.stateSize(), element.stage_states.cols());
+    for (int j = 0; j < stages.cols(); ++j) {
+      stages.col(j) = partState(full, part, element.stage_states.col(j));
+    }
+    element.stage_states = stages;
+    element.stage_multipliers = pairRows(sources, element.stage_multipliers);
+    element.stage_constraints = Eigen::MatrixXd::Zero(sources.size(), stages.cols());
+    element.lowest_constraints.resize(0);
   }
   return result;
 }

@@ -2,12 +2,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
+
+#include "fesd_trajopt/scene/pair_check.h"
 
 namespace fesd {
 namespace {
 
 constexpr double kDegree = M_PI / 180.0;
+/// A pair with a passive side is in contact in the plan while its gap is at most this fraction
+/// of its size: simulated bodies sit on contact only up to the interpolation between steps.
+constexpr double kContactGap = 1e-3;
+/// Simulated bodies are shoved in steps in which nothing moves farther than this fraction of
+/// the smallest radius, so that no contact is stepped over.
+constexpr double kStepFraction = 0.05;
+/// Sweeps of the projection of simulated bodies per step: enough for short chains.
+constexpr int kProjectionSweeps = 4;
+/// Velocities of the plan are differences over this fraction of the horizon.
+constexpr double kVelocityStep = 1e-7;
 
 bool insideWorkspace(const BodyTask& task, const Eigen::VectorXd& p) {
   for (int d = 0; d < p.size(); ++d) {
@@ -76,19 +89,226 @@ Eigen::VectorXd nonnegativeLeastSquares(const Eigen::MatrixXd& G, const Eigen::V
   return lambda;
 }
 
-/// The planned positions of every body as functions of time.
+/// p moved radially out of the ball (centre, distance), or p itself.
+Eigen::VectorXd outside(const Eigen::VectorXd& p, const Eigen::VectorXd& centre, double distance) {
+  const Eigen::VectorXd away = p - centre;
+  const double length = away.norm();
+  if (length >= distance) return p;
+  // A path through the very centre leaves along the first axis (a fixed, deterministic choice).
+  const Eigen::VectorXd direction =
+      length > 0.0 ? Eigen::VectorXd(away / length) : Eigen::VectorXd::Unit(p.size(), 0);
+  return centre + distance * direction;
+}
+
+/// p on a straight path along `direction` (unit), moved sideways out of the ball (centre,
+/// distance): the path goes around the ball on the side the centre leaves free (a fixed side,
+/// the first sideways axis, for a path through the centre), continuously.
+Eigen::VectorXd besidePath(const Eigen::VectorXd& p, const Eigen::VectorXd& direction,
+                           const Eigen::VectorXd& centre, double distance) {
+  const Eigen::VectorXd away = p - centre;
+  const double ahead = away.dot(direction);
+  if (away.norm() >= distance || std::fabs(ahead) >= distance) return p;
+  Eigen::VectorXd sideways = away - ahead * direction;
+  if (sideways.norm() == 0.0) {
+    int axis;
+    direction.cwiseAbs().minCoeff(&axis);
+    sideways = Eigen::VectorXd::Unit(p.size(), axis) - direction(axis) * direction;
+  }
+  return centre + ahead * direction +
+         std::sqrt(distance * distance - ahead * ahead) * sideways.normalized();
+}
+
+bool involves(const ContactPair& pair, int body) {
+  return pair.body == body || (pair.kind == ContactPair::Kind::kBody && pair.other == body);
+}
+
+/// d c / d p_body of a pair's constraint at x (0 when the body is not in the pair).
+Eigen::VectorXd gradientOn(const DiscScene& scene, const ContactPair& pair, int body,
+                           const Eigen::VectorXd& x) {
+  const Eigen::VectorXd p = scene.position(pair.body, x);
+  switch (pair.kind) {
+    case ContactPair::Kind::kBody: {
+      const Eigen::VectorXd difference = p - scene.position(pair.other, x);
+      if (body == pair.body) return 2.0 * difference;
+      if (body == pair.other) return -2.0 * difference;
+      break;
+    }
+    case ContactPair::Kind::kObstacle:
+      if (body == pair.body) return 2.0 * (p - scene.obstacles()[pair.other].position);
+      break;
+    case ContactPair::Kind::kWall:
+      if (body == pair.body) return scene.walls()[pair.other].normal;
+      break;
+  }
+  return Eigen::VectorXd::Zero(scene.dimension());
+}
+
+/// The planned positions of every body as functions of time, and the forces that move them.
 class PlannedMotion {
  public:
-  PlannedMotion(const SceneTask& task, const std::vector<PushAssignment>& pushes,
-                double contact_time, double release_time)
-      : task_(task), pushes_(pushes), contact_(contact_time), release_(release_time) {}
+  PlannedMotion(const SceneTask& task, const std::vector<ContactPair>& pairs,
+                const std::vector<PushAssignment>& pushes, double contact_time, double release_time)
+      : task_(task),
+        pairs_(pairs),
+        pushes_(pushes),
+        contact_(contact_time),
+        release_(release_time) {
+    const DiscScene& scene = task_.scene;
+    for (size_t b = 0; b < scene.bodies().size(); ++b) {
+      const int body = static_cast<int>(b);
+      const BodyTask& t = task_.bodies[b];
+      const bool has_goal = t.target.size() && t.target_weight > 0.0;
+      simulated_.push_back(!scene.bodies()[b].actuated && !isPushed(body) && !has_goal &&
+                           std::any_of(pairs_.begin(), pairs_.end(),
+                                       [&](const ContactPair& p) { return involves(p, body); }));
+    }
+    if (std::find(simulated_.begin(), simulated_.end(), true) != simulated_.end()) simulate();
+  }
 
   Eigen::VectorXd state(double t) const {
+    Eigen::VectorXd x = task_.scene.initialState();
+    if (!samples_.empty()) {
+      const double position = std::clamp(t / sample_step_, 0.0, samples_.size() - 1.0);
+      const size_t m = std::min(static_cast<size_t>(position), samples_.size() - 2);
+      const double s = position - m;
+      x = (1.0 - s) * samples_[m] + s * samples_[m + 1];
+    }
+    placePlannedBodies(t, x);
+    return x;
+  }
+
+  /// The forces of the pairs in contact at t (with a passive side) that move the passive bodies
+  /// with their planned velocities, in the least-squares sense with lambda >= 0: first those of
+  /// the simulated bodies, which they move exactly as the projection did, then those of the
+  /// pushed bodies, which also carry the reactions of what they shove.
+  Eigen::VectorXd multipliers(double t) const {
+    const DiscScene& scene = task_.scene;
+    const Eigen::VectorXd x = state(t), v = velocity(t);
+    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(pairs_.size());
+    std::vector<int> shoving, pushing;
+    for (size_t k = 0; k < pairs_.size(); ++k) {
+      const ContactPair& pair = pairs_[k];
+      const int other = pair.kind == ContactPair::Kind::kBody ? pair.other : pair.body;
+      const bool passive_side =
+          !scene.bodies()[pair.body].actuated || !scene.bodies()[other].actuated;
+      if (!passive_side || pairGap(scene, pair, x) > kContactGap * pairSize(scene, pair)) continue;
+      (simulated_[pair.body] || simulated_[other] ? shoving : pushing)
+          .push_back(static_cast<int>(k));
+    }
+    fitForces(shoving, x, v, lambda, true);
+    fitForces(pushing, x, v, lambda, false);
+    return lambda;
+  }
+
+  /// The mean control of [begin, end]: the mean planned velocity of the actuated bodies minus
+  /// the mean contact reaction on them (piecewise by the phases, 4 midpoints per piece).
+  Eigen::VectorXd meanControl(double begin, double end) const {
+    const DiscScene& scene = task_.scene;
+    const int dim = scene.dimension();
+    const Eigen::VectorXd velocity = (state(end) - state(begin)) / (end - begin);
+    std::vector<double> breaks{begin};
+    for (double t : {contact_, release_}) {
+      if (t > begin && t < end) breaks.push_back(t);
+    }
+    breaks.push_back(end);
+    Eigen::VectorXd reaction = Eigen::VectorXd::Zero(scene.stateSize());
+    constexpr int kMidpoints = 4;
+    for (size_t piece = 0; piece + 1 < breaks.size(); ++piece) {
+      const double length = breaks[piece + 1] - breaks[piece];
+      for (int m = 0; m < kMidpoints; ++m) {
+        const double t = breaks[piece] + (m + 0.5) * length / kMidpoints;
+        const Eigen::VectorXd x = state(t), lambda = multipliers(t);
+        for (size_t k = 0; k < pairs_.size(); ++k) {
+          if (lambda(k) == 0.0) continue;
+          for (int b = 0; b < static_cast<int>(scene.bodies().size()); ++b) {
+            if (!scene.bodies()[b].actuated || !involves(pairs_[k], b)) continue;
+            reaction.segment(scene.stateIndex(b), dim) +=
+                lambda(k) * gradientOn(scene, pairs_[k], b, x) * length / kMidpoints;
+          }
+        }
+      }
+    }
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(scene.controlSize());
+    for (int b = 0; b < static_cast<int>(scene.bodies().size()); ++b) {
+      if (!scene.bodies()[b].actuated) continue;
+      u.segment(scene.controlIndex(b), dim) =
+          scene.position(b, velocity) - scene.position(b, reaction) / (end - begin);
+    }
+    return u;
+  }
+
+ private:
+  const PushAssignment* pushOf(int body) const {
+    for (const PushAssignment& push : pushes_) {
+      if (push.pusher == body) return &push;
+    }
+    return nullptr;
+  }
+  bool isPushed(int body) const {
+    return std::any_of(pushes_.begin(), pushes_.end(),
+                       [body](const PushAssignment& p) { return p.pushed == body; });
+  }
+  bool pushing(int pusher, int pushed, double t) const {
+    const PushAssignment* push = pushOf(pusher);
+    return push && push->pushed == pushed && t > contact_ && t <= release_;
+  }
+  bool planned(const ContactPair& pair) const {
+    return std::find(pairs_.begin(), pairs_.end(), pair) != pairs_.end();
+  }
+  Eigen::VectorXd start(int body) const { return task_.scene.bodies()[body].position; }
+  /// The task's target, or the start when the body has none.
+  Eigen::VectorXd goal(int body, const Eigen::VectorXd& otherwise) const {
+    const BodyTask& t = task_.bodies[body];
+    return t.target.size() && t.target_weight > 0.0 ? t.target : otherwise;
+  }
+
+  /// A pushed body's straight path, moved sideways around the obstacles and off the walls of
+  /// its pairs.
+  Eigen::VectorXd pushedPosition(int body, double t) const {
+    const DiscScene& scene = task_.scene;
+    const Eigen::VectorXd from = start(body), to = goal(body, from);
+    Eigen::VectorXd p = along(from, to, (t - contact_) / std::max(release_ - contact_, 1e-300));
+    if ((to - from).norm() == 0.0) return p;
+    const Eigen::VectorXd direction = (to - from).normalized();
+    const double radius = scene.bodies()[body].radius;
+    for (int o = 0; o < static_cast<int>(scene.obstacles().size()); ++o) {
+      if (!planned({body, ContactPair::Kind::kObstacle, o})) continue;
+      const SceneObstacle& obstacle = scene.obstacles()[o];
+      p = besidePath(p, direction, obstacle.position, radius + obstacle.radius);
+    }
+    for (int w = 0; w < static_cast<int>(scene.walls().size()); ++w) {
+      if (!planned({body, ContactPair::Kind::kWall, w})) continue;
+      const SceneWall& wall = scene.walls()[w];
+      const double gap = wall.normal.dot(p) - wall.offset - radius;
+      if (gap < 0.0) p -= gap * wall.normal;
+    }
+    return p;
+  }
+
+  Eigen::VectorXd plannedPosition(int body, double t) const {
+    const double horizon = task_.horizon;
+    if (isPushed(body)) return pushedPosition(body, t);
+    const PushAssignment* push = pushOf(body);
+    if (!push) return along(start(body), goal(body, start(body)), t / horizon);
+    const Eigen::VectorXd pushed_start = start(push->pushed);
+    if (t <= contact_) {
+      return along(start(body), pushed_start + push->offset, t / std::max(contact_, 1e-300));
+    }
+    if (t <= release_) return pushedPosition(push->pushed, t) + push->offset;
+    const Eigen::VectorXd released = pushedPosition(push->pushed, release_) + push->offset;
+    return along(released, goal(body, released),
+                 (t - release_) / std::max(horizon - release_, 1e-300));
+  }
+
+  /// Every body that is not simulated at its planned position; then the actuated ones step out
+  /// of what they would pass through (obstacles, bodies they do not push, walls), in a fixed
+  /// order, and stay in their workspaces. Simulated bodies keep their positions in x.
+  void placePlannedBodies(double t, Eigen::VectorXd& x) const {
     const DiscScene& scene = task_.scene;
     const int dim = scene.dimension(), count = static_cast<int>(scene.bodies().size());
-    Eigen::VectorXd x(scene.stateSize());
-    for (int b = 0; b < count; ++b) x.segment(scene.stateIndex(b), dim) = plannedPosition(b, t);
-    // Actuated bodies step out of what they would pass through, in a fixed order.
+    for (int b = 0; b < count; ++b) {
+      if (!simulated_[b]) x.segment(scene.stateIndex(b), dim) = plannedPosition(b, t);
+    }
     for (int b = 0; b < count; ++b) {
       if (!scene.bodies()[b].actuated) continue;
       Eigen::VectorXd p = x.segment(scene.stateIndex(b), dim);
@@ -107,68 +327,134 @@ class PlannedMotion {
       }
       x.segment(scene.stateIndex(b), dim) = clampToWorkspace(task_.bodies[b], p);
     }
-    return x;
   }
 
- private:
-  const PushAssignment* pushOf(int body) const {
-    for (const PushAssignment& push : pushes_) {
-      if (push.pusher == body) return &push;
+  /// lambda >= 0 of the `active` pairs that best moves the passive bodies among them (the
+  /// simulated ones only, or the others) with velocity v, given the forces already in lambda.
+  void fitForces(const std::vector<int>& active, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                 Eigen::VectorXd& lambda, bool simulated_bodies) const {
+    const DiscScene& scene = task_.scene;
+    std::vector<int> moved;
+    for (int k : active) {
+      for (int b : {pairs_[k].body, pairs_[k].kind == ContactPair::Kind::kBody ? pairs_[k].other
+                                                                               : pairs_[k].body}) {
+        if (!scene.bodies()[b].actuated && simulated_[b] == simulated_bodies &&
+            std::find(moved.begin(), moved.end(), b) == moved.end()) {
+          moved.push_back(b);
+        }
+      }
     }
-    return nullptr;
-  }
-  bool isPushed(int body) const {
-    return std::any_of(pushes_.begin(), pushes_.end(),
-                       [body](const PushAssignment& p) { return p.pushed == body; });
-  }
-  bool pushing(int pusher, int pushed, double t) const {
-    const PushAssignment* push = pushOf(pusher);
-    return push && push->pushed == pushed && t > contact_ && t <= release_;
-  }
-  Eigen::VectorXd start(int body) const { return task_.scene.bodies()[body].position; }
-  /// The task's target, or the start when the body has none.
-  Eigen::VectorXd goal(int body, const Eigen::VectorXd& otherwise) const {
-    const BodyTask& t = task_.bodies[body];
-    return t.target.size() && t.target_weight > 0.0 ? t.target : otherwise;
-  }
-  Eigen::VectorXd plannedPosition(int body, double t) const {
-    const double horizon = task_.horizon;
-    if (isPushed(body)) {
-      return along(start(body), goal(body, start(body)),
-                   (t - contact_) / std::max(release_ - contact_, 1e-300));
+    if (active.empty() || moved.empty()) return;
+    const int dim = scene.dimension();
+    Eigen::MatrixXd G(dim * moved.size(), active.size());
+    Eigen::VectorXd rhs(dim * moved.size());
+    for (size_t i = 0; i < moved.size(); ++i) {
+      rhs.segment(dim * i, dim) = scene.position(moved[i], v);
+      for (size_t k = 0; k < pairs_.size(); ++k) {  // the reactions fitted before
+        if (lambda(k) != 0.0) {
+          rhs.segment(dim * i, dim) -= lambda(k) * gradientOn(scene, pairs_[k], moved[i], x);
+        }
+      }
+      for (size_t j = 0; j < active.size(); ++j) {
+        G.block(dim * i, j, dim, 1) = gradientOn(scene, pairs_[active[j]], moved[i], x);
+      }
     }
-    const PushAssignment* push = pushOf(body);
-    if (!push) return along(start(body), goal(body, start(body)), t / horizon);
-    const Eigen::VectorXd pushed_start = start(push->pushed);
-    const Eigen::VectorXd pushed_goal = goal(push->pushed, pushed_start);
-    if (t <= contact_) {
-      return along(start(body), pushed_start + push->offset, t / std::max(contact_, 1e-300));
-    }
-    if (t <= release_) return plannedPosition(push->pushed, t) + push->offset;
-    const Eigen::VectorXd released = pushed_goal + push->offset;
-    return along(released, goal(body, released),
-                 (t - release_) / std::max(horizon - release_, 1e-300));
+    const Eigen::VectorXd solution = nonnegativeLeastSquares(G, rhs);
+    for (size_t j = 0; j < active.size(); ++j) lambda(active[j]) = solution(j);
   }
-  /// p moved radially out of the ball (centre, distance), or p itself.
-  static Eigen::VectorXd outside(const Eigen::VectorXd& p, const Eigen::VectorXd& centre,
-                                 double distance) {
-    const Eigen::VectorXd away = p - centre;
-    const double length = away.norm();
-    if (length >= distance) return p;
-    // A path through the very centre leaves along the first axis (a fixed, deterministic choice).
-    const Eigen::VectorXd direction =
-        length > 0.0 ? Eigen::VectorXd(away / length) : Eigen::VectorXd::Unit(p.size(), 0);
-    return centre + distance * direction;
+
+  /// The velocity of the plan just before t (just after, at the start).
+  Eigen::VectorXd velocity(double t) const {
+    const double dt = kVelocityStep * task_.horizon;
+    return t >= dt ? Eigen::VectorXd((state(t) - state(t - dt)) / dt)
+                   : Eigen::VectorXd((state(t + dt) - state(t)) / dt);
+  }
+
+  /// Moves simulated body b out of everything its pairs name, as the projection would.
+  void shove(int b, Eigen::VectorXd& x) const {
+    const DiscScene& scene = task_.scene;
+    const int dim = scene.dimension();
+    Eigen::VectorXd p = x.segment(scene.stateIndex(b), dim);
+    const double radius = scene.bodies()[b].radius;
+    for (const ContactPair& pair : pairs_) {
+      if (!involves(pair, b)) continue;
+      switch (pair.kind) {
+        case ContactPair::Kind::kBody: {
+          const int other = pair.body == b ? pair.other : pair.body;
+          p = outside(p, x.segment(scene.stateIndex(other), dim),
+                      radius + scene.bodies()[other].radius);
+          break;
+        }
+        case ContactPair::Kind::kObstacle: {
+          const SceneObstacle& obstacle = scene.obstacles()[pair.other];
+          p = outside(p, obstacle.position, radius + obstacle.radius);
+          break;
+        }
+        case ContactPair::Kind::kWall: {
+          const SceneWall& wall = scene.walls()[pair.other];
+          const double gap = wall.normal.dot(p) - wall.offset - radius;
+          if (gap < 0.0) p -= gap * wall.normal;
+          break;
+        }
+      }
+    }
+    x.segment(scene.stateIndex(b), dim) = p;
+  }
+
+  /// The simulated bodies over the horizon, in steps short enough that nothing moves farther
+  /// than kStepFraction of the smallest radius per step: at each step the planned bodies move
+  /// (actuated ones stepping around the simulated ones where they were), then every simulated
+  /// body is shoved out of what overlaps it.
+  void simulate() {
+    const DiscScene& scene = task_.scene;
+    double smallest_radius = std::numeric_limits<double>::infinity();
+    for (const SceneBody& body : scene.bodies()) {
+      smallest_radius = std::min(smallest_radius, body.radius);
+    }
+    constexpr int kCoarseSteps = 256;
+    double largest_move = 0.0;
+    Eigen::VectorXd previous = scene.initialState();
+    placePlannedBodies(0.0, previous);
+    for (int m = 1; m <= kCoarseSteps; ++m) {
+      Eigen::VectorXd x = scene.initialState();
+      placePlannedBodies(task_.horizon * m / kCoarseSteps, x);
+      for (int b = 0; b < static_cast<int>(scene.bodies().size()); ++b) {
+        largest_move =
+            std::max(largest_move,
+                     (scene.position(b, x) - scene.position(b, previous)).cwiseAbs().maxCoeff());
+      }
+      previous = x;
+    }
+    const int refinement = static_cast<int>(
+        std::clamp(std::ceil(largest_move / (kStepFraction * smallest_radius)), 1.0, 256.0));
+    const int steps = kCoarseSteps * refinement;
+    sample_step_ = task_.horizon / steps;
+    samples_.reserve(steps + 1);
+    samples_.push_back(scene.initialState());
+    for (int m = 1; m <= steps; ++m) {
+      Eigen::VectorXd x = samples_.back();
+      placePlannedBodies(m * sample_step_, x);
+      for (int sweep = 0; sweep < kProjectionSweeps; ++sweep) {
+        for (int b = 0; b < static_cast<int>(scene.bodies().size()); ++b) {
+          if (simulated_[b]) shove(b, x);
+        }
+      }
+      samples_.push_back(x);
+    }
   }
 
   SceneTask task_;
+  std::vector<ContactPair> pairs_;
   std::vector<PushAssignment> pushes_;
   double contact_, release_;
+  std::vector<bool> simulated_;  ///< passive bodies without a goal: they move only when pushed
+  double sample_step_ = 0.0;
+  std::vector<Eigen::VectorXd> samples_;  ///< full states every sample_step_ (when simulating)
 };
 
-int bodyPairIndex(const std::vector<ContactPair>& modelled, int a, int b) {
-  for (size_t k = 0; k < modelled.size(); ++k) {
-    const ContactPair& pair = modelled[k];
+int bodyPairIndex(const std::vector<ContactPair>& pairs, int a, int b) {
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    const ContactPair& pair = pairs[k];
     if (pair.kind != ContactPair::Kind::kBody) continue;
     if ((pair.body == a && pair.other == b) || (pair.body == b && pair.other == a)) return k;
   }
@@ -177,7 +463,7 @@ int bodyPairIndex(const std::vector<ContactPair>& modelled, int a, int b) {
 
 /// The pushers of one passive body, placed in index order.
 std::vector<PushAssignment> placePushers(const SceneTask& task,
-                                         const std::vector<ContactPair>& modelled, int pushed,
+                                         const std::vector<ContactPair>& pairs, int pushed,
                                          std::vector<bool>& busy) {
   const DiscScene& scene = task.scene;
   const Eigen::VectorXd start = scene.bodies()[pushed].position;
@@ -187,7 +473,7 @@ std::vector<PushAssignment> placePushers(const SceneTask& task,
   std::vector<PushAssignment> placed;
   for (int pusher = 0; pusher < static_cast<int>(scene.bodies().size()); ++pusher) {
     if (!scene.bodies()[pusher].actuated || busy[pusher] ||
-        bodyPairIndex(modelled, pusher, pushed) < 0) {
+        bodyPairIndex(pairs, pusher, pushed) < 0) {
       continue;
     }
     const double radius = scene.bodies()[pusher].radius;
@@ -211,7 +497,7 @@ std::vector<PushAssignment> placePushers(const SceneTask& task,
 
 }  // namespace
 
-PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& modelled) {
+PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs) {
   const DiscScene& scene = task.scene;
   const int count = static_cast<int>(scene.bodies().size()), dim = scene.dimension();
   PushPlan plan;
@@ -222,13 +508,14 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& model
         (t.target - scene.bodies()[b].position).norm() == 0.0) {
       continue;
     }
-    const std::vector<PushAssignment> pushers = placePushers(task, modelled, b, busy);
+    const std::vector<PushAssignment> pushers = placePushers(task, pairs, b, busy);
     plan.pushes.insert(plan.pushes.end(), pushers.begin(), pushers.end());
   }
 
   // The impulse (lambda times the push's duration) of each pushing pair: G impulse = the pushed
   // body's displacement, with G's columns grad_{p_pushed} c = 2 (p_pushed - p_pusher) = -2 offset.
-  Eigen::VectorXd impulse = Eigen::VectorXd::Zero(modelled.size());
+  // It sets the phase lengths; the plan's forces come from its motion (PlannedMotion).
+  Eigen::VectorXd impulse = Eigen::VectorXd::Zero(pairs.size());
   for (int b = 0; b < count; ++b) {
     std::vector<const PushAssignment*> own;
     for (const PushAssignment& p : plan.pushes) {
@@ -240,7 +527,7 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& model
     const Eigen::VectorXd lambda =
         nonnegativeLeastSquares(G, task.bodies[b].target - scene.bodies()[b].position);
     for (size_t k = 0; k < own.size(); ++k) {
-      impulse(bodyPairIndex(modelled, own[k]->pusher, b)) = lambda(k);
+      impulse(bodyPairIndex(pairs, own[k]->pusher, b)) = lambda(k);
     }
   }
   // Phase lengths of least control effort: with straight, uniform motion a phase of length tau
@@ -252,7 +539,7 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& model
     const Eigen::VectorXd target = task.bodies[p.pushed].target;
     const BodyTask& pusher = task.bodies[p.pusher];
     approach += (start + p.offset - scene.bodies()[p.pusher].position).squaredNorm();
-    push += (target - start - 2.0 * p.offset * impulse(bodyPairIndex(modelled, p.pusher, p.pushed)))
+    push += (target - start - 2.0 * p.offset * impulse(bodyPairIndex(pairs, p.pusher, p.pushed)))
                 .squaredNorm();
     if (pusher.target.size() && pusher.target_weight > 0.0) {
       back += (pusher.target - target - p.offset).squaredNorm();
@@ -264,37 +551,13 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& model
     plan.contact_time = task.horizon * std::sqrt(approach) / total;
     plan.release_time = task.horizon * (std::sqrt(approach) + std::sqrt(push)) / total;
   }
-  const auto motion =
-      std::make_shared<PlannedMotion>(task, plan.pushes, plan.contact_time, plan.release_time);
+  const auto motion = std::make_shared<const PlannedMotion>(task, pairs, plan.pushes,
+                                                            plan.contact_time, plan.release_time);
   plan.guess.state = [motion](double t) { return motion->state(t); };
-  const double contact = plan.contact_time, release = plan.release_time;
-  const Eigen::VectorXd push_lambda = release > contact
-                                          ? Eigen::VectorXd(impulse / (release - contact))
-                                          : Eigen::VectorXd(Eigen::VectorXd::Zero(impulse.size()));
-  plan.guess.multipliers = [push_lambda, contact, release](double t) {
-    return t > contact && t <= release ? push_lambda
-                                       : Eigen::VectorXd(Eigen::VectorXd::Zero(push_lambda.size()));
-  };
-
-  // Controls: the mean planned velocity over each interval minus the mean contact reaction
-  // grad_{p_pusher} c lambda = 2 offset lambda.
+  plan.guess.multipliers = [motion](double t) { return motion->multipliers(t); };
   for (int k = 0; k < task.num_intervals; ++k) {
-    const double begin = task.horizon * k / task.num_intervals;
-    const double end = task.horizon * (k + 1) / task.num_intervals;
-    const Eigen::VectorXd velocity = (motion->state(end) - motion->state(begin)) / (end - begin);
-    const double pushing_share =
-        std::max(0.0, std::min(end, release) - std::max(begin, contact)) / (end - begin);
-    Eigen::VectorXd u = Eigen::VectorXd::Zero(scene.controlSize());
-    for (int b = 0; b < count; ++b) {
-      if (scene.bodies()[b].actuated) {
-        u.segment(scene.controlIndex(b), dim) = velocity.segment(scene.stateIndex(b), dim);
-      }
-    }
-    for (const PushAssignment& p : plan.pushes) {
-      u.segment(scene.controlIndex(p.pusher), dim) -=
-          2.0 * p.offset * push_lambda(bodyPairIndex(modelled, p.pusher, p.pushed)) * pushing_share;
-    }
-    plan.guess.controls.push_back(u);
+    plan.guess.controls.push_back(motion->meanControl(task.horizon * k / task.num_intervals,
+                                                      task.horizon * (k + 1) / task.num_intervals));
   }
   return plan;
 }

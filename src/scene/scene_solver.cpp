@@ -1,10 +1,13 @@
 #include "fesd_trajopt/scene/scene_solver.h"
 
 #include <algorithm>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
+#include "fesd_trajopt/scene/lazy_pairs.h"
 #include "fesd_trajopt/scene/moving_part.h"
+#include "fesd_trajopt/scene/pair_check.h"
 #include "fesd_trajopt/scene/push_plan.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 
@@ -64,6 +67,101 @@ std::string joined(const std::vector<std::string>& items) {
   return "[" + text + "]";
 }
 
+/// The pairs of the decisions that are modelled, in their order.
+std::vector<ContactPair> modelledPairs(const std::vector<PairDecision>& decisions) {
+  std::vector<ContactPair> pairs;
+  for (const PairDecision& decision : decisions) {
+    if (decision.modelled) pairs.push_back(decision.pair);
+  }
+  return pairs;
+}
+
+/// The first round's pairs, among the pairs in reach (the decisions' modelled ones): all of them
+/// without lazy pairs; for a warm start the previous solution's pairs when all of them are in
+/// reach (so that its NLP can be the same); else those the first guess calls for. The others
+/// in reach are to be checked.
+void chooseFirstPairs(const SceneTask& task, const std::vector<ContactPair>& candidates,
+                      const TrajectoryGuess& guess, const SceneSolveOptions& options,
+                      SceneOutcome& outcome) {
+  if (!options.lazy_pairs) return;
+  std::vector<bool> chosen(candidates.size(), false);
+  std::vector<std::string> reasons(candidates.size());
+  const std::vector<std::string>* previous =
+      options.previous ? &options.previous->structure.modelled_pairs : nullptr;
+  int previous_found = 0;
+  for (size_t k = 0; previous && k < candidates.size(); ++k) {
+    const std::string name = task.scene.pairName(candidates[k]);
+    chosen[k] = std::find(previous->begin(), previous->end(), name) != previous->end();
+    reasons[k] = "modelled in the previous solution (warm start)";
+    previous_found += chosen[k];
+  }
+  if (!previous || previous_found != static_cast<int>(previous->size())) {
+    const int samples = 16 * task.num_intervals;
+    const PairSelection selection =
+        pairsTheGuessNeeds(task, candidates, guess, options.pair_margin, samples);
+    chosen = selection.modelled;
+    reasons = selection.reasons;
+  }
+  size_t k = 0;
+  for (PairDecision& decision : outcome.decisions) {
+    if (!decision.modelled) continue;
+    decision.modelled = chosen[k];
+    decision.checked = !chosen[k];
+    if (chosen[k]) decision.reason = reasons[k];
+    ++k;
+  }
+}
+
+/// Every pair in reach (modelled or checked) measured along the outcome's trajectory, between
+/// element boundaries too. After a successful round, the checked pairs that came within the
+/// margin become modelled for the next round (named in `rounds_note`): true when there is one.
+bool measureGaps(const SceneTask& task, const SceneSolveOptions& options, int round,
+                 SceneOutcome& outcome, std::string& rounds_note) {
+  const std::vector<Eigen::VectorXd> path = densePath(outcome.trajectory);
+  std::vector<std::string> added;
+  for (PairDecision& decision : outcome.decisions) {
+    if (!decision.modelled && !decision.checked) continue;
+    decision.min_distance = smallestGap(task.scene, decision.pair, path);
+    if (decision.modelled) continue;
+    std::ostringstream reason;
+    reason.precision(3);
+    if (outcome.status == SolveStatus::kSuccess &&
+        withinMargin(task.scene, decision.pair, decision.min_distance, options.pair_margin)) {
+      reason << "modelled from round " << round + 1 << ": came within " << decision.min_distance
+             << " in round " << round;
+      decision.modelled = true;
+      decision.checked = false;
+      added.push_back(task.scene.pairName(decision.pair));
+    } else {
+      reason << "checked on the solution: never closer than " << decision.min_distance
+             << " (margin " << options.pair_margin * pairSize(task.scene, decision.pair) << ")";
+    }
+    decision.reason = reason.str();
+  }
+  if (!added.empty()) {
+    std::string names;
+    for (const std::string& name : added) names += (names.empty() ? "" : ", ") + name;
+    rounds_note += "; round " + std::to_string(round + 1) + " added " + names;
+  }
+  return !added.empty();
+}
+
+/// Re-simulates the outcome's controls with every pair in reach modelled (its modelled and
+/// checked pairs) and returns the distance of the end state from the outcome's, in the full
+/// scene; infinity when the simulation fails.
+double verificationError(const SceneTask& task, const SceneOutcome& outcome,
+                         const SimulationOptions& fine) {
+  std::vector<PairDecision> every_pair = outcome.decisions;
+  for (PairDecision& decision : every_pair) decision.modelled |= decision.checked;
+  const MovingPart part = movingPart(task, every_pair);
+  const SimulationResult result =
+      resimulate(buildOcp(part.task, part.modelled), outcome.trajectory.controls, fine);
+  if (result.status != SolveStatus::kSuccess) return std::numeric_limits<double>::infinity();
+  return (fullSceneTrajectory(task, part, result.trajectory).finalState() -
+          outcome.trajectory.finalState())
+      .norm();
+}
+
 }  // namespace
 
 std::string warmStartRefusal(const SceneOutcome& previous, const SceneOutcome& now) {
@@ -117,30 +215,54 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
   if (!options.prune_pairs) {
     for (PairDecision& decision : outcome.decisions) decision.modelled = true;
   }
-  const MovingPart part = movingPartOf(task, outcome);
-  const OcpDefinition ocp = buildOcp(part.task, part.modelled);
-  OcpSolver solver(ocp, options.ocp);
-  solver.setMonitor(options.monitor);
-  const NlpAssembly& nlp = solver.discretization().nlp();
-  outcome.sizes = {nlp.numVariables(), nlp.numConstraints(), nlp.numComplementarities()};
-  outcome.structure = planStructure(task, outcome, options.ocp.discretization);
-  const TrajectoryGuess plan = planPushes(part.task, part.modelled).guess;
-  if (options.previous != nullptr) {
-    outcome.cold_start_reason = warmStartRefusal(*options.previous, outcome);
+  const std::vector<ContactPair> candidates = modelledPairs(outcome.decisions);
+  const PushPlan plan = planPushes(task, candidates);
+  chooseFirstPairs(task, candidates, plan.guess, options, outcome);
+  Trajectory previous_round;
+  std::vector<ContactPair> previous_pairs;
+  std::string rounds_note;
+  for (int round = 1;; ++round) {
+    const MovingPart part = movingPartOf(task, outcome);
+    const OcpDefinition ocp = buildOcp(part.task, part.modelled);
+    OcpOptions ocp_options = options.ocp;
+    ocp_options.homotopy.wall_time_budget =
+        std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
+    OcpSolver solver(ocp, ocp_options);
+    solver.setMonitor(options.monitor);
+    const NlpAssembly& nlp = solver.discretization().nlp();
+    outcome.sizes = {nlp.numVariables(), nlp.numConstraints(), nlp.numComplementarities()};
+    outcome.structure = planStructure(task, outcome, options.ocp.discretization);
+    const TrajectoryGuess guess = partGuess(task, part, plan.guess, candidates);
+    OcpSolution solution;
+    if (round == 1) {
+      if (options.previous != nullptr) {
+        outcome.cold_start_reason = warmStartRefusal(*options.previous, outcome);
+      }
+      const bool warm = options.previous != nullptr && outcome.cold_start_reason.empty();
+      OcpSolution previous;
+      if (warm) previous.report = options.previous->report;
+      solution = warm ? solver.solve(previous, guess) : solver.solve(guess);
+      if (warm && solution.start != OcpStart::kPrevious) {
+        outcome.cold_start_reason = "the warm solve failed";
+      }
+    } else {
+      solution = solver.solve(partTrajectory(task, part, previous_round, previous_pairs), guess);
+      solution.report.history.insert(solution.report.history.begin(),
+                                     outcome.report.history.begin(), outcome.report.history.end());
+      solution.report.addEffort(outcome.report);
+    }
+    outcome.status = solution.status;
+    outcome.message = solution.message;
+    outcome.start = solution.start;
+    outcome.trajectory = fullSceneTrajectory(task, part, solution.trajectory);
+    outcome.report = solution.report;
+    outcome.pair_rounds = round;
+    previous_round = outcome.trajectory;
+    previous_pairs = part.modelled_in_task;
+    if (!measureGaps(task, options, round, outcome, rounds_note)) break;
   }
-  const bool warm = options.previous != nullptr && outcome.cold_start_reason.empty();
-  OcpSolution previous;
-  if (warm) previous.report = options.previous->report;
-  const OcpSolution solution = warm ? solver.solve(previous, plan) : solver.solve(plan);
-  if (warm && solution.start != OcpStart::kPrevious) {
-    outcome.cold_start_reason = "the warm solve failed";
-  }
-  outcome.status = solution.status;
-  outcome.message = solution.message;
-  outcome.start = solution.start;
-  outcome.trajectory = fullSceneTrajectory(task, part, solution.trajectory);
-  outcome.report = solution.report;
-  if (options.verify && solution.status != SolveStatus::kCancelled) {
+  outcome.message += rounds_note;
+  if (options.verify && outcome.status != SolveStatus::kCancelled) {
     SimulationOptions fine;
     fine.discretization = options.verification;
     // The reference must be finer than the solve, or its own error is what gets measured (the
@@ -153,7 +275,7 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     fine.wall_time_budget =
         std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
     outcome.verified = true;
-    outcome.verification_error = resimulationError(ocp, solution, fine);
+    outcome.verification_error = verificationError(task, outcome, fine);
   }
   return outcome;
 }

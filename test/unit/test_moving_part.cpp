@@ -1,5 +1,6 @@
 // The moving part of a task (scene/moving_part.cpp): a passive body out of reach is left out of
-// the model and keeps its place in the full-scene trajectory of a simulated push.
+// the model and keeps its place in the full-scene trajectory of a simulated push; guesses and
+// trajectories of the full task map onto a part with other pairs.
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -46,6 +47,47 @@ TEST(MovingPart, APassiveBodyOutOfReachIsLeftOutAndKeepsItsPlace) {
   EXPECT_NEAR(full.switches.front().time, 1.0, 1e-9);
   EXPECT_EQ(part.task.scene.pairName(part.modelled[full.switches.front().constraint]),
             task.scene.pairName(decisions[0].pair));
+}
+
+TEST(MovingPart, GuessesAndTrajectoriesMapOntoAPartWithOtherPairs) {
+  const fesd::SceneTask task = pushingTask();  // pusher, puck, rock (far); post
+  const fesd::ContactPair pusher_puck{0, fesd::ContactPair::Kind::kBody, 1},
+      puck_post{1, fesd::ContactPair::Kind::kObstacle, 0},
+      pusher_rock{0, fesd::ContactPair::Kind::kBody, 2};
+  std::vector<fesd::PairDecision> decisions;
+  for (const fesd::ContactPair& pair : task.scene.allPairs()) {
+    decisions.push_back({pair, pair == pusher_rock || pair == puck_post, ""});
+  }
+  const fesd::MovingPart part = fesd::movingPart(task, decisions);
+  ASSERT_EQ(part.bodies, (std::vector<int>{0, 1, 2}));
+  ASSERT_EQ(part.modelled_in_task, (std::vector<fesd::ContactPair>{pusher_rock, puck_post}));
+
+  // A guess whose multipliers belong to (pusher/puck, puck/post): the part takes the post's.
+  fesd::TrajectoryGuess guess;
+  guess.state = [&](double t) { return Eigen::VectorXd(task.scene.initialState() * (1.0 + t)); };
+  guess.multipliers = [](double t) { return Eigen::Vector2d(1.0 + t, 2.0 + t); };
+  const fesd::TrajectoryGuess mapped = fesd::partGuess(task, part, guess, {pusher_puck, puck_post});
+  EXPECT_EQ(mapped.state(0.5), guess.state(0.5));
+  EXPECT_EQ(mapped.multipliers(0.5), Eigen::Vector2d(0.0, 2.5));
+
+  // A trajectory of a part without the rock: the rock keeps its state, multipliers re-ordered.
+  for (fesd::PairDecision& d : decisions) d.modelled = d.pair == pusher_puck;
+  const fesd::MovingPart small = fesd::movingPart(task, decisions);
+  ASSERT_EQ(small.bodies, (std::vector<int>{0, 1}));
+  fesd::Trajectory trajectory;
+  trajectory.states = {Eigen::Vector4d(-3, 0, 0, 0), Eigen::Vector4d(-1, 0, 0, 0)};
+  trajectory.elements.push_back({0, 0.0, 1.0, Eigen::Vector4d(-1, 0, 0, 0),
+                                 Eigen::MatrixXd::Constant(1, 1, 0.7), Eigen::MatrixXd::Zero(1, 1),
+                                 Eigen::VectorXd()});
+  const fesd::Trajectory full = fesd::fullSceneTrajectory(task, small, trajectory);
+  const fesd::Trajectory grown = fesd::partTrajectory(task, part, full, small.modelled_in_task);
+  Eigen::VectorXd expected(6);
+  expected << -1, 0, 0, 0, 100, 100;
+  EXPECT_EQ(grown.states[1], expected);
+  EXPECT_EQ(grown.elements[0].stage_states.col(0), expected);
+  EXPECT_EQ(grown.elements[0].stage_multipliers, Eigen::Vector2d::Zero());  // neither modelled
+  const fesd::Trajectory same = fesd::partTrajectory(task, small, full, small.modelled_in_task);
+  EXPECT_EQ(same.elements[0].stage_multipliers(0, 0), 0.7);
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // PdsDiscretization (discretization/pds_discretization.cpp): the NLP's Jacobian and Lagrangian
 // Hessian against central finite differences in every formulation, and the NLP's sizes.
 #include <cmath>
+#include <random>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -70,6 +72,48 @@ INSTANTIATE_TEST_SUITE_P(
                       NlpCase{true, fesd::CrossComplementarity::kElementSums, 2,
                               fesd::PdsStepEquilibration::kBigM},
                       NlpCase{false, fesd::CrossComplementarity::kElementSums, 2}));
+
+TEST(PdsGuesses, ATrajectoryOnTheSameGridIsTakenOverExactly) {
+  // A point with free steps, states, multipliers and controls, read as a trajectory and given
+  // back: every grid and pair variable comes back (s recomputed from the states, lambda >= 0).
+  fesd::DiscretizationOptions options;
+  options.num_elements = 3;
+  fesd::PdsDiscretization discretization(beadOcp(), options);
+  std::vector<double> x = discretization.constantGuess();
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> uniform(0.1, 0.9);
+  for (int e = 0; e < discretization.numElements(); ++e) {
+    x[discretization.stepIndex(e)] *= 0.8 + 0.4 * uniform(random);
+    for (int i = 0; i < 2; ++i) {
+      for (int d = 0; d < 3; ++d) x[discretization.stateIndex(e, i) + d] = uniform(random);
+    }
+  }
+  for (int k = 0; k < 2; ++k) x[discretization.controlIndex(k)] = uniform(random);
+  const fesd::Trajectory trajectory = discretization.extract(x.data());
+  fesd::Trajectory with_forces = trajectory;
+  for (fesd::ElementValues& element : with_forces.elements) {
+    element.stage_multipliers.setConstant(0.25);
+    element.stage_multipliers(0, 0) = -1.0;  // clipped to its bound
+  }
+  const std::vector<double> guess = discretization.guessFromTrajectory(with_forces);
+  const fesd::Trajectory back = discretization.extract(guess.data());
+  const auto model = std::dynamic_pointer_cast<const fesd::DcsModel>(discretization.ocp().model);
+  for (int e = 0; e < discretization.numElements(); ++e) {
+    EXPECT_EQ(back.elements[e].step, trajectory.elements[e].step);
+    EXPECT_EQ(back.elements[e].stage_states, trajectory.elements[e].stage_states);
+    EXPECT_EQ(back.elements[e].stage_multipliers(0, 0), 0.0);
+    EXPECT_EQ(back.elements[e].stage_multipliers(0, 1), 0.25);
+    for (int i = 0; i < 2; ++i) {
+      Eigen::VectorXd c(model->constraintSize());
+      model->constraints()->evaluate(back.elements[e].stage_states.col(i).data(), c.data());
+      EXPECT_EQ(back.elements[e].stage_constraints.col(i), c.cwiseMax(0.0));
+    }
+  }
+  EXPECT_EQ(back.controls[1], trajectory.controls[1]);
+  fesd::Trajectory other_grid = trajectory;
+  other_grid.elements.pop_back();
+  EXPECT_THROW(discretization.guessFromTrajectory(other_grid), std::invalid_argument);
+}
 
 TEST(NlpStructure, StandardMethodHasNoCrossComplementarityOrEquilibration) {
   fesd::DiscretizationOptions fesd_options, standard_options;

@@ -1,10 +1,13 @@
-// The push plan (planPushes), the first guess of scene OCPs: pushing poses, phase times, and a
-// guess whose states, forces and controls are consistent with the scene's dynamics.
+// The push plan (planPushes), the first guess of scene OCPs: pushing poses, phase times, a
+// guess whose states, forces and controls are consistent with the scene's dynamics, and what
+// it does with bodies in the way (shoves them as a chain) and obstacles (goes around).
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
 
 #include "fesd_trajopt/examples/manipulation_example.h"
+#include "fesd_trajopt/scene/pair_check.h"
 #include "fesd_trajopt/scene/push_plan.h"
 
 namespace {
@@ -110,6 +113,79 @@ TEST(PushPlan, PathsStepAroundWhatTheyWouldPassThrough) {
   for (double t = 0.0; t <= 2.0; t += 0.05) {
     EXPECT_GE(plan.guess.state(t).norm(), 1.5 - 1e-12) << "t = " << t;
   }
+}
+
+/// A pusher (R = 0.5, |u| <= 4) at (-2, 0) and a puck (R = 0.5) to be pushed from the origin to
+/// (3, 0) in T = 2, with `extra` bodies and obstacles.
+fesd::SceneTask pushAlongX() {
+  fesd::SceneTask task;
+  task.scene.bodies() = {{"pusher", 0.5, Eigen::Vector2d(-2.0, 0.0), true},
+                         {"puck", 0.5, Eigen::Vector2d(0.0, 0.0), false}};
+  task.bodies.resize(2);
+  task.bodies[0].max_speed = 4.0;
+  task.bodies[1].target = Eigen::Vector2d(3.0, 0.0);
+  task.bodies[1].target_weight = 100.0;
+  task.horizon = 2.0;
+  task.num_intervals = 20;
+  return task;
+}
+
+TEST(PushPlan, ABodyInThePushedBodysWayIsShovedAlongAsTheProjectionWould) {
+  fesd::SceneTask task = pushAlongX();
+  task.scene.bodies().push_back({"rock", 0.5, Eigen::Vector2d(1.5, 0.3), false});
+  task.bodies.emplace_back();
+  const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();  // pusher/puck first
+  const fesd::ContactPair puck_rock{1, fesd::ContactPair::Kind::kBody, 2};
+  const int chain =
+      static_cast<int>(std::find(pairs.begin(), pairs.end(), puck_rock) - pairs.begin());
+  const fesd::PushPlan plan = fesd::planPushes(task, pairs);
+  // The puck reaches its target straight; the rock is pushed off the puck's path, never
+  // overlapping it (the simulation's steps move nothing by more than 5 % of a radius).
+  EXPECT_LT((plan.guess.state(plan.release_time).segment<2>(2) - Eigen::Vector2d(3, 0)).norm(),
+            1e-12);
+  double pressed = 0.0;
+  for (double t = 0.0; t <= task.horizon; t += 0.01) {
+    const Eigen::VectorXd x = plan.guess.state(t);
+    EXPECT_GT(fesd::pairGap(task.scene, puck_rock, x), -1e-3) << "t = " << t;
+    pressed = std::max(pressed, plan.guess.multipliers(t)(chain));
+  }
+  EXPECT_GT(pressed, 0.0);
+  const Eigen::VectorXd end = plan.guess.state(task.horizon);
+  EXPECT_GT(end(4), 1.6);  // shoved forward ...
+  EXPECT_GT(end(5), 0.5);  // ... and aside, the way the contact normal points
+  // While shoved, the rock moves as the contact force moves it: v_rock = lambda grad c.
+  double t_shove = -1.0;
+  for (double t = plan.contact_time; t < plan.release_time; t += 0.01) {
+    if (plan.guess.multipliers(t)(chain) > 0.0) {
+      t_shove = t + 0.02;
+      break;
+    }
+  }
+  ASSERT_GT(t_shove, 0.0);
+  const double dt = 1e-4;
+  const Eigen::VectorXd x = plan.guess.state(t_shove);
+  const Eigen::Vector2d velocity =
+      (plan.guess.state(t_shove + dt) - plan.guess.state(t_shove - dt)).tail<2>() / (2 * dt);
+  const Eigen::Vector2d force =
+      plan.guess.multipliers(t_shove)(chain) * 2.0 * (x.tail<2>() - x.segment<2>(2));
+  EXPECT_LT((velocity - force).norm(), 0.05 * velocity.norm());
+}
+
+TEST(PushPlan, ThePushedBodyGoesAroundAnObstacleInItsWay) {
+  fesd::SceneTask task = pushAlongX();
+  task.scene.obstacles() = {{"post", 0.4, Eigen::Vector2d(1.5, 0.0)}};  // dead ahead
+  const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();
+  const fesd::PushPlan plan = fesd::planPushes(task, pairs);
+  const fesd::ContactPair puck_post{1, fesd::ContactPair::Kind::kObstacle, 0};
+  double sideways = 0.0;
+  for (double t = 0.0; t <= task.horizon; t += 0.005) {
+    const Eigen::VectorXd x = plan.guess.state(t);
+    EXPECT_GT(fesd::pairGap(task.scene, puck_post, x), -1e-12) << "t = " << t;
+    sideways = std::max(sideways, std::fabs(x(3)));
+  }
+  EXPECT_NEAR(sideways, 0.9, 1e-3);  // around it at contact distance, continuously
+  EXPECT_LT((plan.guess.state(plan.release_time).segment<2>(2) - Eigen::Vector2d(3, 0)).norm(),
+            1e-12);
 }
 
 }  // namespace

@@ -103,6 +103,7 @@ TEST(SolveSceneTask, PushesThePuckToItsTargetOnlyModellingWhatCanTouch) {
 
   // Every pair modelled: the rock moves with the rest (three bodies' states), same answer.
   options.prune_pairs = false;
+  options.lazy_pairs = false;
   options.verify = false;
   const fesd::SceneOutcome full = fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
   ASSERT_EQ(full.status, fesd::SolveStatus::kSuccess) << full.message;
@@ -111,6 +112,40 @@ TEST(SolveSceneTask, PushesThePuckToItsTargetOnlyModellingWhatCanTouch) {
   EXPECT_GT(full.sizes.variables, pruned.sizes.variables);
   EXPECT_FALSE(full.verified);
   EXPECT_LT((full.trajectory.finalState() - final_state).norm(), 1e-6);
+}
+
+TEST(SolveSceneTask, LazyPairsModelWhatThePushNeedsAndCheckTheRestOnTheAnswer) {
+  // A rock in reach beside the push: the pusher and the puck could touch it, the plan never does.
+  fesd::SceneTask task = pushingTask();
+  task.scene.bodies()[2].position = Eigen::Vector2d(0.5, 2.0);
+  task.bodies[1].target = Eigen::Vector2d(1.0, 0.0);
+  task.bodies[1].target_weight = 100.0;
+  fesd::SceneSolveOptions options;
+  options.ocp.discretization.num_elements = 2;
+  const fesd::SceneOutcome lazy = fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
+  ASSERT_EQ(lazy.status, fesd::SolveStatus::kSuccess) << lazy.message;
+  EXPECT_EQ(lazy.pair_rounds, 1);
+  EXPECT_EQ(lazy.modelledPairs(), 1);
+  EXPECT_EQ(lazy.checkedPairs(), 2);
+  EXPECT_EQ(lazy.moving_bodies, (std::vector<int>{0, 1}));
+  for (const fesd::PairDecision& d : lazy.decisions) {
+    EXPECT_FALSE(std::isnan(d.min_distance)) << task.scene.pairName(d.pair);
+    if (d.checked) {
+      EXPECT_GT(d.min_distance, options.pair_margin * 1.0) << task.scene.pairName(d.pair);
+      EXPECT_NE(d.reason.find("checked on the solution"), std::string::npos) << d.reason;
+    } else {
+      EXPECT_GT(d.min_distance, -1e-3);  // the modelled pair, between boundaries too
+    }
+  }
+  // Every pair in reach from the start: the same plan in a larger NLP.
+  options.lazy_pairs = false;
+  const fesd::SceneOutcome all = fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
+  ASSERT_EQ(all.status, fesd::SolveStatus::kSuccess) << all.message;
+  EXPECT_EQ(all.modelledPairs(), 3);
+  EXPECT_EQ(all.checkedPairs(), 0);
+  EXPECT_GT(all.sizes.variables, lazy.sizes.variables);
+  EXPECT_NEAR(all.report.objective, lazy.report.objective, 1e-6 * lazy.report.objective);
+  EXPECT_LT((all.trajectory.finalState() - lazy.trajectory.finalState()).norm(), 1e-6);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
-// Trajectory evaluation (discretization/trajectory.cpp): the lowest constraint value along an
-// element's collocation polynomial, and the unresolved switches found from it.
+// Trajectory evaluation (discretization/trajectory.cpp): the collocation polynomial and the dense
+// path through it, the lowest constraint value along an element's polynomial, and the
+// unresolved switches found from it.
+#include <cmath>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -38,6 +40,37 @@ TEST(UnresolvedSwitches, LowestDistanceAlongThePolynomialIsExactForAParabola) {
   EXPECT_FALSE(fesd::findUnresolvedSwitches({element})[0].passes_through);
   element.stage_constraints(0, 0) = 1e-7;  // weakly active: both sides negligible
   EXPECT_TRUE(fesd::findUnresolvedSwitches({element}).empty());
+}
+
+TEST(DensePath, SamplesEachElementsPolynomialInTimeOrder) {
+  // Two Radau-IIA(2) elements of x(tau) = tau^2 (exact for the degree-2 polynomial), each
+  // element's tau from 0 to 1 mapped onto [e, e + 1].
+  const fesd::ButcherTableau radau = fesd::makeTableau(fesd::CollocationFamily::kRadauIIA, 2);
+  fesd::Trajectory trajectory;
+  trajectory.stage_nodes = radau.c;
+  auto x = [](double t) { return Eigen::VectorXd::Constant(1, t * t); };
+  for (int e = 0; e < 2; ++e) {
+    trajectory.times.push_back(e);
+    trajectory.states.push_back(x(e));
+    Eigen::MatrixXd stages(1, 2);
+    stages << x(e + radau.c(0)), x(e + radau.c(1));
+    trajectory.elements.push_back({0, double(e), 1.0, stages, Eigen::MatrixXd(0, 2),
+                                   Eigen::MatrixXd(0, 2), Eigen::VectorXd()});
+  }
+  trajectory.times.push_back(2.0);
+  trajectory.states.push_back(x(2.0));
+  EXPECT_NEAR(fesd::collocationState(radau.c, x(1.0), trajectory.elements[1].stage_states, 0.5)(0),
+              2.25, 1e-14);
+  const std::vector<Eigen::VectorXd> path = fesd::densePath(trajectory, 3);
+  // The start, then per element 3 samples and the stage in each of its two gaps.
+  ASSERT_EQ(path.size(), 1u + 2 * 2 * (3 + 1));
+  double previous = -1.0;
+  for (const Eigen::VectorXd& state : path) {
+    EXPECT_GT(state(0), previous);  // time order (x increases with t)
+    previous = state(0);
+  }
+  EXPECT_NEAR(path[1](0), std::pow(radau.c(0) / 4.0, 2), 1e-14);  // a quarter into the 1st gap
+  EXPECT_NEAR(path.back()(0), 4.0, 1e-14);                        // the last stage is the end
 }
 
 }  // namespace

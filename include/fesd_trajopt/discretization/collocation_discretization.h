@@ -31,6 +31,9 @@ class CollocationDiscretization : public Discretization {
   /// method's) as a guess: the grid's variables copied, the dependent ones completed.
   std::vector<double> adoptedGuess(const Discretization& other,
                                    const std::vector<double>& solution) const override;
+  /// The trajectory's steps (clipped to the step bounds), stage and end states and controls;
+  /// its pair values through guessPairValues.
+  std::vector<double> guessFromTrajectory(const Trajectory& trajectory) const override;
   /// The grid's times, steps, states and controls, each element's complementarity-pair values
   /// and the switches between them; times start at start_time.
   Trajectory extract(const double* x, double start_time = 0.0,
@@ -101,6 +104,9 @@ class CollocationDiscretization : public Discretization {
   /// Which pairs are active at the start of the solution x.
   virtual std::vector<bool> activeAtStart(const double* x, const Trajectory& trajectory,
                                           double tolerance) const = 0;
+  /// Sets each stage point's pair variables (multipliers, lifted values, modes) of a guess whose
+  /// grid variables come from `trajectory` (guessFromTrajectory).
+  virtual void guessPairValues(const Trajectory& trajectory, std::vector<double>& x) const = 0;
   /// Sets the variables that follow from the grid's (lifted values, boundary multipliers,
   /// auxiliaries) consistently with them.
   virtual void completeDependentVariables(std::vector<double>& x) const = 0;

@@ -48,6 +48,11 @@ class Discretization {
   /// The guess's states, multipliers and controls (clipped to their bounds) at the stage points
   /// of the nominal grid; the rest consistent with them.
   virtual std::vector<double> guessFrom(const TrajectoryGuess& guess) const = 0;
+  /// A trajectory of this discretisation's model on a grid of the same sizes (intervals,
+  /// elements per interval, stages), e.g. a solution of a problem with fewer constraints moved
+  /// into this one's coordinates: its steps, states, controls and multipliers (clipped to their
+  /// bounds); the rest consistent with them.
+  virtual std::vector<double> guessFromTrajectory(const Trajectory& trajectory) const = 0;
   /// A solution of a discretisation of the same OCP on the same grid (e.g. the standard
   /// method's) as a guess for this one.
   virtual std::vector<double> adoptedGuess(const Discretization& other,

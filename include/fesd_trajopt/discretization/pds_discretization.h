@@ -82,6 +82,11 @@ class PdsDiscretization : public CollocationDiscretization {
   /// auxiliaries' inequalities would pin them without interior, so they are frozen.
   void equilibrateActiveSet(const double* x);
   void addLifting(const StagePoint& point);
+  /// A guess's lambda (clipped at 0) and s = c(x) (clipped at 0: a path may graze into a
+  /// constraint) at one stage point whose state is set.
+  void setPairGuess(const StagePoint& point, const Eigen::VectorXd& lambda,
+                    std::vector<double>& x) const;
+  void guessPairValues(const Trajectory& trajectory, std::vector<double>& x) const override;
   /// The point before an element's stages: the start or the previous element's last stage.
   const StagePoint& previousPoint(int element) const;
   /// Sets the step-equilibration auxiliaries (pi, max, nu, OR) of x consistently with its

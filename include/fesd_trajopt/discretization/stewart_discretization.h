@@ -131,6 +131,10 @@ class StewartDiscretization : public CollocationDiscretization {
   /// lambda, mu of the LP at the point's state, and theta on each subsystem's (first) mode
   /// of smallest indicator.
   void setModeOfState(std::vector<double>& x, const StagePoint& point) const;
+  /// setModeOfState at every stage point.
+  void setModesOfStates(std::vector<double>& x) const;
+  /// The modes of the guess's states (the trajectory's own algebraic values are not needed).
+  void guessPairValues(const Trajectory& trajectory, std::vector<double>& x) const override;
 
   std::shared_ptr<const StewartModel> model_;
   int nf_, nsys_;

@@ -59,6 +59,8 @@ struct Trajectory {
   std::vector<double> interval_times;     ///< control interval boundaries (intervals + 1)
   std::vector<SwitchEvent> switches;
   std::vector<UnresolvedSwitch> unresolved_switches;
+  /// The tableau's nodes c: where an element's stage points lie, as fractions of its length.
+  Eigen::VectorXd stage_nodes;
 
   bool switchesResolved() const { return unresolved_switches.empty(); }
   const Eigen::VectorXd& finalState() const { return states.back(); }
@@ -87,6 +89,16 @@ Eigen::VectorXd lowestConstraintBetweenStages(const SmoothFunction& constraints,
                                               const Eigen::VectorXd& start_state,
                                               const Eigen::MatrixXd& stage_states,
                                               int samples_per_gap = 4);
+
+/// The state of an element's collocation polynomial, the polynomial of degree n_s through the
+/// start state at 0 and the stage states at `nodes`, at the fraction `t` of the element.
+Eigen::VectorXd collocationState(const Eigen::VectorXd& nodes, const Eigen::VectorXd& start_state,
+                                 const Eigen::MatrixXd& stage_states, double t);
+
+/// A trajectory's states in time order, for checks between element boundaries: its start, then
+/// per element between consecutive stage nodes `samples_per_gap` points of its collocation
+/// polynomial and the stage state, and its end state if that is no stage (c_ns < 1).
+std::vector<Eigen::VectorXd> densePath(const Trajectory& trajectory, int samples_per_gap = 4);
 
 /// Depth (state units) to which an element's collocation polynomial may pass through a
 /// constraint before the element counts as stepping over a contact. Within resolved contacts

@@ -46,14 +46,18 @@ struct OcpOptions {
 
 /// Where a solve started.
 enum class OcpStart {
-  kConstant,            ///< every state at x0, controls 0 (solve())
-  kGuess,               ///< a TrajectoryGuess (solve(guess))
-  kConstantAfterGuess,  ///< the solve from the guess failed; then from the constant start
-  kPrevious,            ///< a previous solution (solve(previous))
-  kGuessAfterPrevious,  ///< the warm start failed; then from the guess (solve(previous, guess))
+  kConstant,              ///< every state at x0, controls 0 (solve())
+  kGuess,                 ///< a TrajectoryGuess (solve(guess))
+  kConstantAfterGuess,    ///< the solve from the guess failed; then from the constant start
+  kPrevious,              ///< a previous solution (solve(previous))
+  kGuessAfterPrevious,    ///< the warm start failed; then from the guess (solve(previous, guess))
+  kTrajectory,            ///< a trajectory on the same grid (solve(trajectory, guess))
+  kGuessAfterTrajectory,  ///< that failed; then from the guess
 };
-/// The start in words; `guess` names what solve(guess) was given (e.g. "push plan").
-std::string startName(OcpStart start, const std::string& guess = "guess");
+/// The start in words; `guess` names what solve(guess) was given (e.g. "push plan"),
+/// `trajectory` what solve(trajectory, guess) was.
+std::string startName(OcpStart start, const std::string& guess = "guess",
+                      const std::string& trajectory = "trajectory");
 
 struct OcpSolution {
   SolveStatus status = SolveStatus::kSolverError;
@@ -84,6 +88,11 @@ class OcpSolver {
   /// is left of the budget; the report then holds both. The start names the guess's solve
   /// kGuessAfterPrevious (a further fall back to the constant start stays kConstantAfterGuess).
   OcpSolution solve(const OcpSolution& previous, const TrajectoryGuess& fallback);
+  /// From a trajectory on this grid (Discretization::guessFromTrajectory, e.g. the solution of
+  /// the same task with fewer contact pairs) as from a guess (OcpOptions::guess_sigma), and when
+  /// that fails (neither success nor interrupted) solve(fallback) within what is left of the
+  /// budget; the report then holds both.
+  OcpSolution solve(const Trajectory& trajectory, const TrajectoryGuess& fallback);
 
   const Discretization& discretization() const { return *discretization_; }
   const OcpOptions& options() const { return options_; }
@@ -95,6 +104,13 @@ class OcpSolver {
   OcpSolution solveFromConstant(double wall_time_budget);
   /// solve(guess) within a wall-time budget (seconds).
   OcpSolution solveFromGuess(const TrajectoryGuess& guess, double wall_time_budget);
+  /// The homotopy from a point of the discretisation at guess_sigma, polished early.
+  OcpSolution solveFromPoint(const std::vector<double>& point, double wall_time_budget);
+  /// `first` when it succeeded or was interrupted; else solve(fallback) within what is left of
+  /// the budget, its start `fallback_start` when it began from the guess; `first_name` says
+  /// in the message where the first solve began.
+  OcpSolution orFallback(OcpSolution first, const TrajectoryGuess& fallback,
+                         OcpStart fallback_start, const std::string& first_name);
   /// `later`, started after `earlier` failed: one report with both histories and efforts.
   static OcpSolution after(const OcpSolution& earlier, OcpSolution later);
   /// The solution read from `report`, whose point belongs to `source`.
@@ -106,6 +122,11 @@ class OcpSolver {
   std::unique_ptr<Discretization> fixed_grid_;  ///< the standard method on the same grid
   MpccSolver solver_, fixed_grid_solver_, guess_solver_;
 };
+
+/// The OCP's system from its initial state under the given controls (one per control interval)
+/// with the FESD integrator, one step per control interval, on the given discretisation.
+SimulationResult resimulate(const OcpDefinition& ocp, const std::vector<Eigen::VectorXd>& controls,
+                            const SimulationOptions& fine);
 
 /// Re-simulates a solution's controls with the FESD integrator (one step per control interval,
 /// the given, typically finer, discretisation) and returns the distance between the simulated

@@ -70,6 +70,10 @@ class DiscScene {
   int controlSize() const;
   /// First state index of a body's position.
   int stateIndex(int body) const { return dimension_ * body; }
+  /// A body's position at a state of the scene.
+  Eigen::VectorXd position(int body, const Eigen::VectorXd& x) const {
+    return x.segment(stateIndex(body), dimension_);
+  }
   /// First control index of a body's velocity, or -1 for a passive body.
   int controlIndex(int body) const;
   Eigen::VectorXd initialState() const;

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "fesd_trajopt/discretization/trajectory.h"
+#include "fesd_trajopt/discretization/trajectory_guess.h"
 #include "fesd_trajopt/scene/scene_task.h"
 
 namespace fesd {
@@ -14,6 +15,7 @@ struct MovingPart {
   SceneTask task;                     ///< the moving bodies only; obstacles and walls as given
   std::vector<int> bodies;            ///< their indices in the full task, in order
   std::vector<ContactPair> modelled;  ///< the modelled pairs in the same order, re-indexed
+  std::vector<ContactPair> modelled_in_task;  ///< the same pairs with the full task's indices
 };
 
 /// Splits off the moving part of a task given its pair decisions (decidePairs). Actuated bodies
@@ -24,5 +26,17 @@ MovingPart movingPart(const SceneTask& task, const std::vector<PairDecision>& de
 /// positions in every state and stage state; controls, multipliers and switches are unchanged.
 Trajectory fullSceneTrajectory(const SceneTask& full, const MovingPart& part,
                                const Trajectory& trajectory);
+
+/// The moving part's view of a guess for the full task whose multipliers belong to `pairs`
+/// (full task indices): the part's states, and each modelled pair's multiplier (0 for a pair
+/// that `pairs` lacks).
+TrajectoryGuess partGuess(const SceneTask& full, const MovingPart& part,
+                          const TrajectoryGuess& guess, const std::vector<ContactPair>& pairs);
+
+/// The moving part's view of a trajectory of the full scene whose multipliers belong to `pairs`
+/// (e.g. a solution with fewer modelled pairs): states, stage states and each modelled pair's
+/// multipliers (0 for a pair that `pairs` lacks); stage constraint values are left out (0).
+Trajectory partTrajectory(const SceneTask& full, const MovingPart& part,
+                          const Trajectory& trajectory, const std::vector<ContactPair>& pairs);
 
 }  // namespace fesd

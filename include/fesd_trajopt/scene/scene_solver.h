@@ -61,11 +61,18 @@ struct SceneOutcome {
   /// A warm start was asked for but the solve started cold (or fell back to cold): why.
   std::string cold_start_reason;
   std::vector<AccuracyRung> refinements;  ///< solveToAccuracy's rungs, in order
+  /// Solves with a growing set of modelled pairs (SceneSolveOptions::lazy_pairs): 1 when the
+  /// first set held; 0 for simulations.
+  int pair_rounds = 0;
 
   bool solved() const { return invalid.empty() && infeasible.empty(); }
   int modelledPairs() const {
     return static_cast<int>(std::count_if(decisions.begin(), decisions.end(),
                                           [](const PairDecision& d) { return d.modelled; }));
+  }
+  int checkedPairs() const {
+    return static_cast<int>(std::count_if(decisions.begin(), decisions.end(),
+                                          [](const PairDecision& d) { return d.checked; }));
   }
 };
 
@@ -76,7 +83,16 @@ std::string warmStartRefusal(const SceneOutcome& previous, const SceneOutcome& n
 struct SceneSolveOptions {
   OcpOptions ocp;           ///< discretisation and homotopy (its wall-time budget covers all)
   bool prune_pairs = true;  ///< model only the pairs that can touch (decidePairs); else all
-  bool verify = false;      ///< re-simulate the optimal controls finely (resimulationError)
+  /// Lazy pairs: of the pairs in reach, model first only those the first guess calls for
+  /// (pairsTheGuessNeeds), check every other one on the solution (between element boundaries
+  /// too: densePath, smallestGap), add those that come within the margin and solve again from
+  /// that solution, until none does. Then the answer solves the problem with every pair in
+  /// reach. false: every pair in reach is modelled from the start.
+  bool lazy_pairs = true;
+  double pair_margin = 0.1;  ///< lazy pairs' margin, relative to the pair's size (pairSize)
+  /// Re-simulate the optimal controls finely with every pair in reach modelled and report the
+  /// end state's deviation.
+  bool verify = false;
   /// The re-simulation's discretisation, raised to at least the solve's stages and twice its
   /// elements per interval; its budget is what the solve left of the total.
   DiscretizationOptions verification;
@@ -86,10 +102,11 @@ struct SceneSolveOptions {
   const SolveMonitor* monitor = nullptr;  ///< progress and cancel of the solve; not owned
 };
 
-/// The planning entry point of a scene task: validateTask, infeasibility, decidePairs,
-/// movingPart, buildOcp, then OcpSolver from the push plan (a deterministic guess: the same task
-/// gives the same plan on every machine), the trajectory of the full scene and, on request,
-/// the verification.
+/// The planning entry point of a scene task: validateTask, infeasibility, decidePairs, the push
+/// plan of the pairs in reach (a deterministic guess: the same task gives the same plan on every
+/// machine), then rounds of movingPart, buildOcp and OcpSolver over the modelled pairs (lazy
+/// pairs: the first round from the push plan, each later one from the round before), the
+/// trajectory of the full scene and, on request, the verification.
 SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
                             const SceneSolveOptions& options);
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -57,8 +58,13 @@ std::string infeasibility(const SceneTask& task);
 /// Whether a contact pair is modelled, and why (or why not).
 struct PairDecision {
   ContactPair pair;
-  bool modelled;
+  bool modelled;  ///< a constraint of the NLP (decidePairs: it can touch within the horizon)
   std::string reason;
+  /// In reach but not modelled: checked on the solution instead (lazy pairs, solveSceneTask).
+  bool checked = false;
+  /// The smallest gap between the pair's surfaces along the answer (modelled and checked pairs;
+  /// NaN for the others and before a solve).
+  double min_distance = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Simulate only the effects the scene calls for: a pair is modelled when it is allowed and

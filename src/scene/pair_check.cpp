@@ -1,0 +1,72 @@
+#include "fesd_trajopt/scene/pair_check.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace fesd {
+namespace {
+
+/// The pair's relative position (body minus other; for a wall: the body's position).
+Eigen::VectorXd relativePosition(const DiscScene& scene, const ContactPair& pair,
+                                 const Eigen::VectorXd& x) {
+  const Eigen::VectorXd p = scene.position(pair.body, x);
+  switch (pair.kind) {
+    case ContactPair::Kind::kBody:
+      return p - scene.position(pair.other, x);
+    case ContactPair::Kind::kObstacle:
+      return p - scene.obstacles().at(pair.other).position;
+    case ContactPair::Kind::kWall:
+      return p;
+  }
+  return p;
+}
+
+/// The closest approach of the segment from a to b to the origin.
+double closestApproach(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  const Eigen::VectorXd d = b - a;
+  const double length_squared = d.squaredNorm();
+  const double s = length_squared > 0.0 ? std::clamp(-a.dot(d) / length_squared, 0.0, 1.0) : 0.0;
+  return (a + s * d).norm();
+}
+
+}  // namespace
+
+double pairSize(const DiscScene& scene, const ContactPair& pair) {
+  const double radius = scene.bodies().at(pair.body).radius;
+  switch (pair.kind) {
+    case ContactPair::Kind::kBody:
+      return radius + scene.bodies().at(pair.other).radius;
+    case ContactPair::Kind::kObstacle:
+      return radius + scene.obstacles().at(pair.other).radius;
+    case ContactPair::Kind::kWall:
+      return radius;
+  }
+  return radius;
+}
+
+double pairGap(const DiscScene& scene, const ContactPair& pair, const Eigen::VectorXd& x) {
+  const Eigen::VectorXd relative = relativePosition(scene, pair, x);
+  if (pair.kind == ContactPair::Kind::kWall) {
+    const SceneWall& wall = scene.walls().at(pair.other);
+    return wall.normal.dot(relative) - wall.offset - pairSize(scene, pair);
+  }
+  return relative.norm() - pairSize(scene, pair);
+}
+
+double smallestGap(const DiscScene& scene, const ContactPair& pair,
+                   const std::vector<Eigen::VectorXd>& path) {
+  double smallest = std::numeric_limits<double>::infinity();
+  if (pair.kind == ContactPair::Kind::kWall) {  // linear in the position: the ends are extreme
+    for (const Eigen::VectorXd& x : path) smallest = std::min(smallest, pairGap(scene, pair, x));
+    return smallest;
+  }
+  const double size = pairSize(scene, pair);
+  for (size_t i = 0; i < path.size(); ++i) {
+    const Eigen::VectorXd a = relativePosition(scene, pair, path[i]);
+    const Eigen::VectorXd b = i + 1 < path.size() ? relativePosition(scene, pair, path[i + 1]) : a;
+    smallest = std::min(smallest, closestApproach(a, b) - size);
+  }
+  return smallest;
+}
+
+}  // namespace fesd
