@@ -16,5 +16,6 @@ int scaling(const Arguments& args);
 int homotopyFailures(const Arguments& args);
 int simulationSweep(const Arguments& args);
 int replan(const Arguments& args);
+int planningSweep(const Arguments& args);
 
 }  // namespace fesd_bench

@@ -45,6 +45,13 @@ const std::map<std::string, Command>& commands() {
         "    time, CSV. --intervals=30 --stages=1,2,3,4 --elements=1,2,3,4\n"
         "    --methods=fesd,standard --budget=120 (s per solve) --reference-stages=4\n"
         "    --reference-elements=8 --start=plan|constant (first guess)"}},
+      {"planning-sweep",
+       {fesd_bench::planningSweep,
+        "Seeded random planning scenes (families: cluttered) solved as the node solves them and\n"
+        "    verified with every pair in reach: status, wall time, pairs in reach / modelled /\n"
+        "    rounds, target distance, penetration; CSV and a summary against the showcase.\n"
+        "    --families=cluttered --first-seed=0 --scenes=20 --pairs=lazy|all --margin=0.1\n"
+        "    --elements=3 --stages=2 --budget=120 --showcase=true"}},
       {"replan",
        {fesd_bench::replan,
         "Replanning: the showcase's object target moved --steps times by --step along x, each\n"

@@ -50,8 +50,24 @@ def ten_discs_in_reach():
     return request
 
 
+def ten_discs_in_reach_all_pairs():
+    """ten_discs_in_reach with every pair in reach modelled from the start (before lazy pairs)."""
+    request = ten_discs_in_reach()
+    request.contact_pairs = PlanRequest.PAIRS_ALL_IN_REACH
+    return request
+
+
+def disc_in_the_way():
+    """The default scene and a passive disc (radius 1) at (0, 6), in the object's way."""
+    request = PlanRequest()
+    request.bodies = [passive_disc("in_the_way", 0.0, 6.0, 1.0)]
+    return request
+
+
 CASES = {"default": default_scene, "far_body": far_body,
-         "ten_discs_out_of_reach": ten_discs_out_of_reach, "ten_discs_in_reach": ten_discs_in_reach}
+         "ten_discs_out_of_reach": ten_discs_out_of_reach, "ten_discs_in_reach": ten_discs_in_reach,
+         "ten_discs_in_reach_all_pairs": ten_discs_in_reach_all_pairs,
+         "disc_in_the_way": disc_in_the_way}
 
 
 def node_memory_mib():
@@ -66,6 +82,7 @@ def main():
     parser.add_argument("--cases", default="default,far_body,ten_discs_out_of_reach",
                         help="comma-separated, from: " + ", ".join(CASES))
     parser.add_argument("--repeat", type=int, default=1)
+    parser.add_argument("--verify", action="store_true", help="set verify in every request")
     args = parser.parse_args(rospy.myargv()[1:])
     rospy.init_node("fesd_trajopt_roundtrip_bench", anonymous=True)
     rospy.wait_for_service(NODE + "/solve_trajectory", timeout=60.0)
@@ -73,17 +90,23 @@ def main():
     for case in args.cases.split(","):
         for run in range(args.repeat):
             started = time.monotonic()
-            response = solve(CASES[case]())
+            request = CASES[case]()
+            request.verify = args.verify
+            response = solve(request)
             round_trip = time.monotonic() - started
             stats = response.solution.statistics
             peak, resident = node_memory_mib()
-            print("case=%s run=%d status=%d bodies=%d modelled_pairs=%d pruned_pairs=%d "
-                  "nlp_variables=%d complementarities=%d ipopt_iterations=%d solve_s=%.3f "
-                  "round_trip_s=%.3f node_peak_mib=%.1f node_rss_mib=%.1f" % (
+            print("case=%s run=%d status=%d bodies=%d modelled_pairs=%d checked_pairs=%d "
+                  "pruned_pairs=%d pair_rounds=%d nlp_variables=%d complementarities=%d "
+                  "ipopt_iterations=%d objective=%.7g solve_s=%.3f round_trip_s=%.3f "
+                  "verification_error=%.3g node_peak_mib=%.1f node_rss_mib=%.1f" % (
                       case, run, response.status, len(response.solution.bodies),
-                      len(response.solution.modeled_pairs), len(response.solution.pruned_pairs),
+                      len(response.solution.modeled_pairs), len(response.solution.checked_pairs),
+                      len(response.solution.pruned_pairs), stats.pair_rounds,
                       stats.nlp_variables, stats.complementarity_constraints,
-                      stats.ipopt_iterations, stats.wall_time, round_trip, peak, resident))
+                      stats.ipopt_iterations, stats.objective, stats.wall_time, round_trip,
+                      response.solution.verification_error if response.solution.verified
+                      else float("nan"), peak, resident))
             sys.stdout.flush()
     return 0
 

@@ -362,6 +362,45 @@ class NodeServices(unittest.TestCase):
         for b in self.default.solution.bodies:  # the same NLP, so the very same plan
             self.assertEqual(moving[b.name], b.positions, b.name)
 
+    def test_bodies_in_reach_off_the_path_are_checked_on_the_answer_not_modelled(self):
+        rocks = [body("rock_%d" % i, add=True, radius=1.0, initial_position=Point(x, -12, 0))
+                 for i, x in enumerate([-4.0, 0.0, 4.0])]
+        lazy = small_default(10)
+        lazy.bodies = rocks
+        response = self.solve(lazy)
+        self.assertEqual(response.status, SUCCESS, response.message)
+        solution = response.solution
+        self.assertEqual({(p.first, p.second) for p in solution.modeled_pairs},
+                         {("actuator_1", "object"), ("actuator_2", "object")})
+        self.assertEqual(solution.statistics.pair_rounds, 1)
+        checked = {(p.first, p.second): p for p in solution.checked_pairs}
+        self.assertIn(("actuator_2", "rock_1"), checked)
+        for pair in solution.checked_pairs:  # each stays beyond the margin, 0.1 of its radii
+            self.assertGreater(pair.min_distance, 0.1 * 3.0, pair)
+            self.assertIn("checked on the solution", pair.reason)
+        for pair in solution.modeled_pairs:  # no penetration, between boundaries too
+            self.assertGreater(pair.min_distance, -1e-2, pair)
+        for pair in solution.pruned_pairs:
+            self.assertTrue(math.isnan(pair.min_distance), pair)
+        small = self.solve(small_default(10))
+        final = {b.name: b.positions[-1] for b in solution.bodies}
+        for b in small.solution.bodies:  # the same NLP as without the rocks: the same plan
+            self.assertEqual(final[b.name], b.positions[-1], b.name)
+
+        every = small_default(10)
+        every.bodies = rocks
+        every.contact_pairs = PlanRequest.PAIRS_ALL_IN_REACH
+        response = self.solve(every)
+        self.assertEqual(response.status, SUCCESS, response.message)
+        self.assertEqual(len(response.solution.checked_pairs), 0)
+        self.assertEqual(len(response.solution.modeled_pairs),
+                         len(solution.modeled_pairs) + len(solution.checked_pairs))
+        self.assertGreater(response.solution.statistics.nlp_variables,
+                           solution.statistics.nlp_variables)
+        for b in response.solution.bodies:  # every pair in reach modelled: the same plan
+            end = b.positions[-1]
+            self.assertLess(math.hypot(end.x - final[b.name].x, end.y - final[b.name].y), 1e-6)
+
     def test_a_scene_where_nothing_can_touch_is_one_smooth_nlp(self):
         request = PlanRequest()
         request.urdf = '<robot name="empty"><link name="world"/></robot>'

@@ -3,47 +3,22 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <random>
 #include <sstream>
+
+#include "fesd_trajopt/scene/seeded_random.h"
 
 namespace fesd {
 namespace push_scenes {
 namespace {
 
-/// Uniform numbers from std::mt19937's raw output: the standard fixes the engine's sequence,
-/// not the distributions', so this is the same with every standard library.
-class Uniform {
- public:
-  explicit Uniform(unsigned seed) : engine_(seed) {}
-  double operator()(double low = 0.0, double high = 1.0) {
-    return low + (high - low) * (engine_() / 4294967296.0);
-  }
-  int integer(int low, int high) {  ///< in [low, high]
-    return std::min(high, low + static_cast<int>((*this)() * (high - low + 1)));
-  }
-
- private:
-  std::mt19937 engine_;
-};
-
-Eigen::VectorXd randomUnit(Uniform& random, int dim) {
-  if (dim == 2) {
-    const double angle = random(0.0, 2.0 * M_PI);
-    return Eigen::Vector2d(std::cos(angle), std::sin(angle));
-  }
-  const double z = random(-1.0, 1.0), angle = random(0.0, 2.0 * M_PI);
-  const double r = std::sqrt(1.0 - z * z);
-  return Eigen::Vector3d(r * std::cos(angle), r * std::sin(angle), z);
-}
-
 /// A random unit vector perpendicular to the unit vector d.
-Eigen::VectorXd randomPerpendicular(Uniform& random, const Eigen::VectorXd& d) {
+Eigen::VectorXd randomPerpendicular(SeededUniform& random, const Eigen::VectorXd& d) {
   if (d.size() == 2) {
     const Eigen::Vector2d normal(-d(1), d(0));
     return random() < 0.5 ? normal : Eigen::Vector2d(-normal);
   }
   for (;;) {
-    const Eigen::VectorXd v = randomUnit(random, 3);
+    const Eigen::VectorXd v = random.unitVector(3);
     const Eigen::VectorXd perpendicular = v - v.dot(d) * d;
     if (perpendicular.norm() > 0.1) return perpendicular.normalized();
   }
@@ -160,7 +135,7 @@ std::vector<int> outliers(const std::vector<double>& errors, double ratio, doubl
 }
 
 PushScene randomPushScene(unsigned seed) {
-  Uniform random(seed);
+  SeededUniform random(seed);
   PushScene s;
   s.seed = seed;
   const int dim = random() < 0.5 ? 2 : 3;
@@ -168,7 +143,7 @@ PushScene randomPushScene(unsigned seed) {
   const double pusher_radius = random(0.5, 1.5), object_radius = random(0.5, 1.5);
   const double distance = pusher_radius + object_radius;
   const double speed = random(0.5, 2.0);
-  const Eigen::VectorXd d = randomUnit(random, dim), e = randomPerpendicular(random, d);
+  const Eigen::VectorXd d = random.unitVector(dim), e = randomPerpendicular(random, d);
   s.velocity = speed * d;
   s.horizon = random(2.0, 5.0);
   // The first contact at an offset inside a step of one grid: near the step's start, near its

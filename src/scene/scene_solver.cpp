@@ -146,22 +146,6 @@ bool measureGaps(const SceneTask& task, const SceneSolveOptions& options, int ro
   return !added.empty();
 }
 
-/// Re-simulates the outcome's controls with every pair in reach modelled (its modelled and
-/// checked pairs) and returns the distance of the end state from the outcome's, in the full
-/// scene; infinity when the simulation fails.
-double verificationError(const SceneTask& task, const SceneOutcome& outcome,
-                         const SimulationOptions& fine) {
-  std::vector<PairDecision> every_pair = outcome.decisions;
-  for (PairDecision& decision : every_pair) decision.modelled |= decision.checked;
-  const MovingPart part = movingPart(task, every_pair);
-  const SimulationResult result =
-      resimulate(buildOcp(part.task, part.modelled), outcome.trajectory.controls, fine);
-  if (result.status != SolveStatus::kSuccess) return std::numeric_limits<double>::infinity();
-  return (fullSceneTrajectory(task, part, result.trajectory).finalState() -
-          outcome.trajectory.finalState())
-      .norm();
-}
-
 }  // namespace
 
 std::string warmStartRefusal(const SceneOutcome& previous, const SceneOutcome& now) {
@@ -275,9 +259,41 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     fine.wall_time_budget =
         std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
     outcome.verified = true;
-    outcome.verification_error = verificationError(task, outcome, fine);
+    outcome.verification_error = verifyOutcome(task, outcome, fine, options.pair_margin).error;
   }
   return outcome;
+}
+
+Verification verifyOutcome(const SceneTask& task, const SceneOutcome& outcome,
+                           const SimulationOptions& fine, double margin) {
+  Stopwatch stopwatch;
+  std::vector<PairDecision> decisions = outcome.decisions;
+  Verification verification;
+  for (bool grew = true; grew;) {
+    const MovingPart part = movingPart(task, decisions);
+    SimulationOptions remaining = fine;
+    remaining.wall_time_budget = std::max(0.0, fine.wall_time_budget - stopwatch.wallSeconds());
+    const SimulationResult result =
+        resimulate(buildOcp(part.task, part.modelled), outcome.trajectory.controls, remaining);
+    verification.status = result.status;
+    verification.trajectory = fullSceneTrajectory(task, part, result.trajectory);
+    verification.modelled_pairs = static_cast<int>(part.modelled.size());
+    if (result.status != SolveStatus::kSuccess) return verification;
+    const std::vector<Eigen::VectorXd> path = densePath(verification.trajectory);
+    grew = false;
+    for (PairDecision& decision : decisions) {
+      if (decision.checked &&
+          withinMargin(task.scene, decision.pair, smallestGap(task.scene, decision.pair, path),
+                       margin)) {
+        decision.modelled = true;
+        decision.checked = false;
+        grew = true;
+      }
+    }
+  }
+  verification.error =
+      (verification.trajectory.finalState() - outcome.trajectory.finalState()).norm();
+  return verification;
 }
 
 SceneOutcome simulateSceneTask(SceneTask task, const std::vector<Eigen::VectorXd>& controls,

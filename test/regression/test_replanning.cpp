@@ -2,6 +2,7 @@
 // progress and cancel through a SolveMonitor.
 #include <atomic>
 #include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -77,6 +78,43 @@ TEST(Replanning, AWarmStartIsRefusedWithAReasonWhenTheStructureChanged) {
   interrupted.status = fesd::SolveStatus::kTimeout;
   EXPECT_EQ(fesd::warmStartRefusal(interrupted, first), "no previous solution");
   EXPECT_EQ(fesd::warmStartRefusal(first, first), "");
+}
+
+TEST(Replanning, AWarmStartModelsThePairsTheLastAnswerEndedWith) {
+  // Rocks the actuators could reach: lazily checked, not modelled. A last answer that modelled
+  // every pair in reach (as after rounds that added pairs) makes the warm start's first round
+  // model them all, so its NLP matches and the warm start applies.
+  fesd::SceneTask task = movedTarget(0.0);
+  for (int i = 0; i < 3; ++i) {
+    task.scene.bodies().push_back(
+        {"rock_" + std::to_string(i), 1.0, Eigen::Vector2d(-4.0 + 4.0 * i, -12.0), false});
+    task.bodies.emplace_back();
+  }
+  fesd::SceneSolveOptions every_pair = showcaseOptions();
+  every_pair.lazy_pairs = false;
+  const fesd::SceneOutcome last = fesd::solveSceneTask(task, kLimits, every_pair);
+  ASSERT_EQ(last.status, fesd::SolveStatus::kSuccess) << last.message;
+  ASSERT_GT(last.modelledPairs(), 2);
+  fesd::SceneSolveOptions warm_options = showcaseOptions();
+  warm_options.previous = &last;
+  fesd::SceneTask moved = task;
+  moved.bodies[2].target = Eigen::Vector2d(0.3, 10.0);
+  const fesd::SceneOutcome warm = fesd::solveSceneTask(moved, kLimits, warm_options);
+  ASSERT_EQ(warm.status, fesd::SolveStatus::kSuccess) << warm.message;
+  EXPECT_EQ(warm.start, fesd::OcpStart::kPrevious) << warm.cold_start_reason;
+  EXPECT_EQ(warm.modelledPairs(), last.modelledPairs());
+  EXPECT_EQ(warm.pair_rounds, 1);
+
+  // From a lazy answer (the two pushing pairs) the next warm start models those two again.
+  const fesd::SceneOutcome lazy = fesd::solveSceneTask(task, kLimits, showcaseOptions());
+  ASSERT_EQ(lazy.status, fesd::SolveStatus::kSuccess) << lazy.message;
+  EXPECT_EQ(lazy.modelledPairs(), 2);
+  warm_options.previous = &lazy;
+  const fesd::SceneOutcome warm_lazy = fesd::solveSceneTask(moved, kLimits, warm_options);
+  ASSERT_EQ(warm_lazy.status, fesd::SolveStatus::kSuccess) << warm_lazy.message;
+  EXPECT_EQ(warm_lazy.start, fesd::OcpStart::kPrevious) << warm_lazy.cold_start_reason;
+  EXPECT_EQ(warm_lazy.modelledPairs(), 2);
+  EXPECT_LT(warm_lazy.report.iterations, lazy.report.iterations);
 }
 
 TEST(Replanning, TheMonitorSeesEveryRelaxedNlpAndItsIterationsAddUp) {

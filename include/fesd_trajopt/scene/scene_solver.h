@@ -110,6 +110,21 @@ struct SceneSolveOptions {
 SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
                             const SceneSolveOptions& options);
 
+/// A solution's controls re-simulated on a finer grid, in the full scene, as if every pair in
+/// reach (the outcome's modelled and checked pairs) were modelled: the verification of
+/// solveSceneTask. Lazily, as the solve: with the modelled pairs first, then again with every
+/// checked pair that came within `margin` (relative to pairSize) of contact, until none does; a
+/// pair that stays farther away never acts, so the re-simulation is the one with all pairs.
+struct Verification {
+  SolveStatus status = SolveStatus::kSolverError;
+  Trajectory trajectory;  ///< of the full scene
+  /// Distance of the re-simulated end state from the outcome's; infinity when it failed.
+  double error = std::numeric_limits<double>::infinity();
+  int modelled_pairs = 0;  ///< in the last re-simulation
+};
+Verification verifyOutcome(const SceneTask& task, const SceneOutcome& outcome,
+                           const SimulationOptions& fine, double margin);
+
 /// The accuracy ladder: the task solved and verified on options' discretisation, then with one
 /// more stage at a time up to limits.max_stages, then one more element per interval at a time up
 /// to limits.max_elements, until a rung's verification_error <= target_accuracy (kSuccess) or the

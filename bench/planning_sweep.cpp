@@ -1,0 +1,98 @@
+// planning-sweep: seeded random planning scenes (examples/planning_scenes.h) solved as the node
+// solves them, each verified with every pair in reach modelled: status, wall time, pairs in
+// reach / modelled / rounds, the pushed body's distance from its target, penetration of the
+// plan and of the verification. CSV, then a summary against the showcase's wall time.
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+#include "fesd_trajopt/examples/manipulation_example.h"
+#include "fesd_trajopt/examples/planning_scenes.h"
+#include "fesd_trajopt/solver/stopwatch.h"
+
+namespace fesd_bench {
+namespace {
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t middle = values.size() / 2;
+  return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
+}
+
+}  // namespace
+
+int planningSweep(const Arguments& args) {
+  namespace ps = fesd::planning_scenes;
+  const std::vector<std::string> families = args.texts("families", ps::families());
+  const int first_seed = args.integer("first-seed", 0);
+  const int scenes = args.integer("scenes", 20);
+  const std::string pairs = args.text("pairs", "lazy");
+  fesd::SceneSolveOptions options;
+  options.ocp.discretization.num_elements = args.integer("elements", 3);
+  options.ocp.discretization.num_stages = args.integer("stages", 2);
+  options.ocp.homotopy.wall_time_budget = args.number("budget", 120.0);
+  options.lazy_pairs = pairs == "lazy";
+  options.pair_margin = args.number("margin", 0.1);
+  fesd::SimulationOptions fine;
+  fine.discretization.num_stages = std::max(3, options.ocp.discretization.num_stages);
+  fine.discretization.num_elements = 2 * options.ocp.discretization.num_elements;
+  fine.wall_time_budget = options.ocp.homotopy.wall_time_budget;
+  const bool with_showcase = args.flag("showcase", true);
+  args.rejectUnused();
+  if (pairs != "lazy" && pairs != "all") throw std::invalid_argument("--pairs=lazy|all");
+
+  double showcase_seconds = 0.0;
+  if (with_showcase) {
+    fesd::Stopwatch stopwatch;
+    const fesd::SceneOutcome showcase =
+        fesd::solveSceneTask(fesd::manipulation_example::task(40), fesd::TaskLimits{}, options);
+    showcase_seconds = stopwatch.wallSeconds();
+    std::printf("# showcase: %s, %d Ipopt iterations, %.3f s\n",
+                fesd::statusName(showcase.status).c_str(), showcase.report.iterations,
+                showcase_seconds);
+  }
+  std::printf(
+      "family,seed,bodies,obstacles,reachable,pairs,status,wall_s,ipopt_iterations,"
+      "homotopy_steps,pairs_in_reach,modelled,checked,rounds,target_distance,plan_gap,"
+      "verification_status,verification_error,verification_gap,verification_s,description\n");
+  std::vector<double> walls;
+  int count = 0, failed = 0, missed = 0, penetrating = 0;
+  for (const std::string& family : families) {
+    for (int seed = first_seed; seed < first_seed + scenes; ++seed) {
+      const ps::PlanningScene scene = ps::scene(family, seed);
+      const ps::PlanningRun run = ps::runScene(scene, options, fine);
+      const fesd::SceneOutcome& outcome = run.outcome;
+      const bool ok = outcome.solved() && outcome.status == fesd::SolveStatus::kSuccess;
+      ++count;
+      failed += !ok;
+      missed += ok && run.target_distance > 1e-3;
+      penetrating += run.plan_gap < -1e-6 || run.verification_gap < -1e-6;
+      walls.push_back(run.wall_seconds);
+      std::printf("%s,%u,%zu,%zu,%d,%s,%s,%.3f,%d,%zu,%d,%d,%d,%d,%.3g,%.3g,%s,%.3g,%.3g,%.3f,%s\n",
+                  family.c_str(), scene.seed, scene.task.scene.bodies().size(),
+                  scene.task.scene.obstacles().size(), scene.reachable, pairs.c_str(),
+                  outcome.solved() ? fesd::statusName(outcome.status).c_str() : "refused",
+                  run.wall_seconds, outcome.report.iterations, outcome.report.history.size(),
+                  outcome.modelledPairs() + outcome.checkedPairs(), outcome.modelledPairs(),
+                  outcome.checkedPairs(), outcome.pair_rounds, run.target_distance, run.plan_gap,
+                  fesd::statusName(run.verification.status).c_str(), run.verification.error,
+                  run.verification_gap, run.verification_seconds, scene.description.c_str());
+      std::fflush(stdout);
+    }
+  }
+  const double slowest = walls.empty() ? 0.0 : *std::max_element(walls.begin(), walls.end());
+  std::printf("# %d scenes: %d not SUCCESS, %d SUCCESS with the target missed by > 1e-3, %d with "
+              "penetration below -1e-6 of a pair's size; wall time median %.3f s, slowest %.3f s",
+              count, failed, missed, penetrating, median(walls), slowest);
+  if (showcase_seconds > 0.0) {
+    std::printf(" (%.2fx and %.2fx the showcase's)", median(walls) / showcase_seconds,
+                slowest / showcase_seconds);
+  }
+  std::printf("\n");
+  return 0;
+}
+
+}  // namespace fesd_bench
