@@ -17,5 +17,6 @@ int homotopyFailures(const Arguments& args);
 int simulationSweep(const Arguments& args);
 int replan(const Arguments& args);
 int planningSweep(const Arguments& args);
+int kkt(const Arguments& args);
 
 }  // namespace fesd_bench

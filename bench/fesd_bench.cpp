@@ -26,6 +26,14 @@ const std::map<std::string, Command>& commands() {
         "Continue after a failed relaxed NLP or stop: status, failed NLPs, iterations, time and\n"
         "    error of circle/chain simulations and showcase OCPs with both settings, CSV.\n"
         "    --stages=1,2,3,4 --steps=5,10,20,40 --intervals=10,20,30"}},
+      {"kkt",
+       {fesd_bench::kkt,
+        "The showcase plus --rocks passive discs in reach: NLP sizes, densest Jacobian rows and\n"
+        "    columns, KKT degrees, and one solve (iterations, Ipopt time per iteration).\n"
+        "    --rocks=7 --intervals=40 --elements=3 --stages=2 --solve=true --history "
+        "--dump=PREFIX\n"
+        "    --budget=600 and the homotopy/Ipopt options of ocp-manipulation "
+        "(--ipopt=name:value)"}},
       {"ocp-manipulation",
        {fesd_bench::ocpManipulation,
         "The collaborative manipulation OCP (Pozharskiy et al. 2024 Sec. IV-B), key=value per "

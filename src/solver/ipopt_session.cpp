@@ -1,5 +1,7 @@
 #include "ipopt_session.h"
 
+#include <dlfcn.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -17,6 +19,23 @@ double steadySeconds() {
 }
 
 namespace {
+
+/// SCOTCH (MUMPS' ordering) runs multithreaded by default, and then its orderings, and with
+/// them the rounding of every factorization, differ from run to run; with one thread they are
+/// the same in every run. Set at load time, before any thread exists; a value from the
+/// environment is kept.
+const bool kScotchSingleThreaded = setenv("SCOTCH_PTHREAD_NUMBER", "1", 0) == 0;
+
+/// SCOTCH draws from one random generator per process, which goes on from one ordering to the
+/// next: the same NLP solved twice in a process got two orderings, and results differing in
+/// the last bits. Reset before every solve (each solve analyses its KKT matrix anew), it gives
+/// every solve the same ordering of the same matrix. Found at run time: MUMPS may have been
+/// built without SCOTCH (then mumps_pivot_order 3 falls back to another ordering).
+void resetScotchRandom() {
+  using Reset = void (*)();
+  static const Reset reset = reinterpret_cast<Reset>(dlsym(RTLD_DEFAULT, "SCOTCH_randomReset"));
+  if (reset != nullptr) reset();
+}
 
 using Ipopt::Index;
 using Ipopt::Number;
@@ -40,16 +59,22 @@ class TnlpAdapter : public Ipopt::TNLP {
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag,
                     IndexStyleEnum& index_style) override {
+    selectRows();  // here, not in the constructor: a problem that throws is Ipopt's failure
     n = problem_.numVariables();
-    m = problem_.numConstraints();
-    nnz_jac_g = problem_.jacobianPattern().nonzeros();
+    m = static_cast<Index>(rows_.size());
+    nnz_jac_g = static_cast<Index>(jacobian_entries_.size());
     nnz_h_lag = problem_.hessianPattern().nonzeros();
     index_style = C_STYLE;
     return true;
   }
 
   bool get_bounds_info(Index, Number* x_l, Number* x_u, Index, Number* g_l, Number* g_u) override {
-    problem_.getBounds(x_l, x_u, g_l, g_u);
+    std::vector<double> lower(problem_.numConstraints()), upper(problem_.numConstraints());
+    problem_.getBounds(x_l, x_u, lower.data(), upper.data());
+    for (size_t r = 0; r < rows_.size(); ++r) {
+      g_l[r] = lower[rows_[r]];
+      g_u[r] = upper[rows_[r]];
+    }
     return true;
   }
 
@@ -62,8 +87,7 @@ class TnlpAdapter : public Ipopt::TNLP {
       std::copy(point_.bound_upper_multipliers.begin(), point_.bound_upper_multipliers.end(), z_u);
     }
     if (init_lambda) {
-      std::copy(point_.constraint_multipliers.begin(), point_.constraint_multipliers.begin() + m,
-                lambda);
+      for (Index r = 0; r < m; ++r) lambda[r] = point_.constraint_multipliers[rows_[r]];
     }
     return true;
   }
@@ -84,7 +108,8 @@ class TnlpAdapter : public Ipopt::TNLP {
 
   bool eval_g(Index, const Number* x, bool, Index m, Number* g) override {
     return timed([&] {
-      problem_.constraints(x, g);
+      problem_.constraints(x, full_rows_.data());
+      for (Index r = 0; r < m; ++r) g[r] = full_rows_[rows_[r]];
       return allFinite(g, m);
     });
   }
@@ -93,12 +118,15 @@ class TnlpAdapter : public Ipopt::TNLP {
                   Number* values) override {
     if (values == nullptr) {
       const SparsityPattern& pattern = problem_.jacobianPattern();
-      std::copy(pattern.rows.begin(), pattern.rows.end(), rows);
-      std::copy(pattern.cols.begin(), pattern.cols.end(), cols);
+      for (size_t e = 0; e < jacobian_entries_.size(); ++e) {
+        rows[e] = row_index_[pattern.rows[jacobian_entries_[e]]];
+        cols[e] = pattern.cols[jacobian_entries_[e]];
+      }
       return true;
     }
     return timed([&] {
-      problem_.jacobian(x, values);
+      problem_.jacobian(x, full_jacobian_.data());
+      for (Index e = 0; e < nele; ++e) values[e] = full_jacobian_[jacobian_entries_[e]];
       return allFinite(values, nele);
     });
   }
@@ -112,7 +140,8 @@ class TnlpAdapter : public Ipopt::TNLP {
       return true;
     }
     return timed([&] {
-      problem_.hessian(x, objective_factor, lambda, values);
+      for (size_t r = 0; r < rows_.size(); ++r) full_rows_[rows_[r]] = lambda[r];
+      problem_.hessian(x, objective_factor, full_rows_.data(), values);
       return allFinite(values, nele);
     });
   }
@@ -130,7 +159,8 @@ class TnlpAdapter : public Ipopt::TNLP {
     point_.x.assign(x, x + n);
     point_.bound_lower_multipliers.assign(z_l, z_l + n);
     point_.bound_upper_multipliers.assign(z_u, z_u + n);
-    point_.constraint_multipliers.assign(lambda, lambda + m);
+    point_.constraint_multipliers.assign(problem_.numConstraints(), 0.0);
+    for (Index r = 0; r < m; ++r) point_.constraint_multipliers[rows_[r]] = lambda[r];
     point_.has_multipliers = true;
   }
 
@@ -151,8 +181,49 @@ class TnlpAdapter : public Ipopt::TNLP {
     return ok;
   }
 
+  /// The complementarity product rows of a polishing NLP (both bounds infinite: the active set
+  /// is fixed by variable bounds) constrain nothing, but Ipopt would still give each a slack and
+  /// a multiplier, two zero-diagonal rows and columns of the KKT matrix coupled to both sides of
+  /// the pair. They are left out (multipliers 0). On the 44-pair scene (5280 pairs) the polishing
+  /// KKT matrix went from 41680 to 31120 rows, MUMPS' delayed pivots from 27000 to ~7000, and
+  /// its factorization from 1.3-2 s to 0.05-0.1 s. Only these rows: leaving out the relaxed NLPs'
+  /// free equal-step rows as well changed the showcase's homotopy path (N = 20: 38 instead of
+  /// 33 iterations; N = 50 and 60 ended in other local optima).
+  void selectRows() {
+    const int m = problem_.numConstraints();
+    std::vector<double> x_lower(problem_.numVariables()), x_upper(problem_.numVariables());
+    std::vector<double> lower(m), upper(m);
+    problem_.getBounds(x_lower.data(), x_upper.data(), lower.data(), upper.data());
+    rows_.clear();
+    jacobian_entries_.clear();
+    row_index_.assign(m, -1);
+    std::vector<bool> product_row(m, false);
+    if (const auto* mpcc = dynamic_cast<const RelaxedMpcc*>(&problem_)) {
+      for (int row : mpcc->complementarityRows()) product_row[row] = true;
+    }
+    for (int r = 0; r < m; ++r) {
+      if (!product_row[r] || lower[r] > -kUnbounded || upper[r] < kUnbounded) {
+        row_index_[r] = static_cast<int>(rows_.size());
+        rows_.push_back(r);
+      }
+    }
+    const SparsityPattern& pattern = problem_.jacobianPattern();
+    for (int e = 0; e < pattern.nonzeros(); ++e) {
+      if (row_index_[pattern.rows[e]] >= 0) jacobian_entries_.push_back(e);
+    }
+    full_rows_.assign(m, 0.0);
+    full_jacobian_.assign(pattern.nonzeros(), 0.0);
+  }
+
+  /// Ipopt's nlp_lower_bound_inf / nlp_upper_bound_inf (defaults).
+  static constexpr double kUnbounded = 1e19;
+
   const NlpProblem& problem_;
   PrimalDualPoint& point_;
+  std::vector<int> rows_;              ///< Ipopt's rows: the problem's rows that bound something
+  std::vector<int> row_index_;         ///< per problem row: its Ipopt row, or -1
+  std::vector<int> jacobian_entries_;  ///< the problem's Jacobian entries in Ipopt's rows
+  std::vector<double> full_rows_, full_jacobian_;
   double deadline_;
   const std::atomic<bool>* cancel_;
   double evaluation_seconds_ = 0.0;
@@ -184,6 +255,20 @@ IpoptSession::IpoptSession(const IpoptSettings& settings)
   options.SetStringValue("hessian_approximation", "exact");
   // Complementarity products must be resolved far below Ipopt's default bound relaxation (1e-8).
   options.SetNumericValue("bound_relax_factor", 0.0);
+  // MUMPS orders the KKT matrix by its graph alone (SCOTCH nested dissection), not through a
+  // matching on the values of each NLP's first KKT matrix (Ipopt's default ICNTL(6) = 7, then
+  // MUMPS' automatic compressed AMF ordering). On the 44-pair scene (26352 variables) the
+  // default ordering varied with those values from 2.2e9 to 7.7e10 flops per factorization
+  // (largest fronts 862-3697); SCOTCH's: 1.1e9 flops, fronts of at most ~500 (one element).
+  options.SetIntegerValue("mumps_permuting_scaling", 0);
+  options.SetIntegerValue("mumps_pivot_order", 3);
+  // MUMPS allocates its workspace anew for every factorization, estimate x (1 + this / 100).
+  // Above glibc's mmap threshold (32 MiB) that is fresh memory each time, and every page it
+  // touches faults: with Ipopt's default 1000 a 16k-row KKT matrix (showcase, N = 120) took
+  // 46 ms per factorization instead of 19 ms. With SCOTCH the factors exceeded the estimate by
+  // at most 22 % (no "more memory" refactorization in any run measured).
+  options.SetIntegerValue("mumps_mem_percent", 100);
+
   for (const auto& [name, value] : settings.extra_options) {
     if (!setOption(options, name, value)) {
       throw std::invalid_argument("Ipopt option '" + name + "' does not accept '" + value + "'");
@@ -223,6 +308,7 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
   // threads of one process crashed there. Solves in different threads take turns.
   static std::mutex mumps;
   std::lock_guard<std::mutex> one_solve_at_a_time(mumps);
+  resetScotchRandom();
   try {
     outcome.status = application_->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(GetRawPtr(adapter)));
   } catch (const std::exception&) {

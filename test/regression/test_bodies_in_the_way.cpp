@@ -95,7 +95,9 @@ TEST(BodiesInTheWay, APairTheFirstRoundMissedIsAddedAndSolvedAgain) {
   EXPECT_GE(run.outcome.pair_rounds, 2);
   EXPECT_NE(run.outcome.message.find("round 2 added"), std::string::npos) << run.outcome.message;
   for (const fesd::PairDecision& d : run.outcome.decisions) {
-    if (d.checked) EXPECT_GT(d.min_distance, 0.1 * fesd::pairSize(scene.task.scene, d.pair));
+    if (d.checked) {
+      EXPECT_GT(d.min_distance, 0.1 * fesd::pairSize(scene.task.scene, d.pair));
+    }
   }
 }
 
