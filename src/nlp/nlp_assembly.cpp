@@ -353,6 +353,17 @@ NlpAssembly::ActiveSetChoice NlpAssembly::chooseActiveSet(const double* x) const
     }
     return true;
   };
+  // Sides a fixed active set may leave free of their product: nonnegative free variables only.
+  const auto freeSide = [this](const std::vector<LinearTerm>& side) {
+    for (const LinearTerm& t : side) {
+      if (x_lower_[t.variable] == x_upper_[t.variable] || x_lower_[t.variable] != 0.0 ||
+          t.coefficient <= 0.0) {
+        return false;
+      }
+    }
+    return true;
+  };
+  choice.biactive.assign(pairs, false);
   for (int p = 0; p < pairs; ++p) {
     const Complementarity& comp = complementarities_[p];
     const bool left_can_vanish = canVanish(comp.left), right_can_vanish = canVanish(comp.right);
@@ -362,6 +373,17 @@ NlpAssembly::ActiveSetChoice NlpAssembly::chooseActiveSet(const double* x) const
     }
     const double left = comp.left_weight * evaluateLinear(comp.left, x);
     const double right = comp.right_weight * evaluateLinear(comp.right, x);
+    // Both sides far below the size sqrt(left_weight right_weight sigma) that each side of a
+    // product at the relaxation's bound would have: the pair is biactive, not complementary.
+    const double biactive_size =
+        biactive_fraction_ * std::sqrt(comp.left_weight * comp.right_weight * biactive_sigma_);
+    if (biactive_size > 0.0 && std::max(left, right) <= biactive_size && freeSide(comp.left) &&
+        freeSide(comp.right)) {
+      choice.biactive[p] = true;
+      choice.left_is_zero[p] = false;  // one reading, so that active sets compare equal
+      choice.ambiguity[p] = 0.0;
+      continue;
+    }
     choice.left_is_zero[p] = left_can_vanish && (left <= right || !right_can_vanish);
     const double larger = std::max(std::fabs(left), std::fabs(right));
     const bool decided = !left_can_vanish || !right_can_vanish || larger == 0.0;
@@ -391,16 +413,30 @@ bool NlpAssembly::fixActiveSet(const double* x, int flip) {
     if (flip >= pairs || ambiguity[order[flip]] < 1e-3) return false;
     left_is_zero[order[flip]] = !left_is_zero[order[flip]];
   }
-  return fixGivenActiveSet(left_is_zero, x);
+  return fixPairs(left_is_zero, choice.biactive, x);
 }
 
 bool NlpAssembly::fixGivenActiveSet(const std::vector<bool>& left_is_zero, const double* x) {
+  return fixPairs(left_is_zero, std::vector<bool>(left_is_zero.size(), false), x);
+}
+
+bool NlpAssembly::fixPairs(const std::vector<bool>& left_is_zero, const std::vector<bool>& biactive,
+                           const double* x) {
   releaseActiveSet();
   const int pairs = static_cast<int>(complementarities_.size());
   if (static_cast<int>(left_is_zero.size()) != pairs) return false;
   std::vector<int> to_fix;
+  std::vector<bool> biactive_variables;
   for (int p = 0; p < pairs; ++p) {
     const Complementarity& comp = complementarities_[p];
+    if (biactive[p]) {
+      // Both sides stay free (>= 0): the pair's part of the relaxed NLP of the MPCC.
+      if (biactive_variables.empty()) biactive_variables.assign(numVariables(), false);
+      for (const LinearExpression* side : {&comp.left, &comp.right}) {
+        for (const LinearTerm& t : *side) biactive_variables[t.variable] = true;
+      }
+      continue;
+    }
     for (const LinearTerm& t : left_is_zero[p] ? comp.left : comp.right) {
       if (x_lower_[t.variable] == x_upper_[t.variable]) {
         // Data: it must be (negligibly close to) zero to be the zero side.
@@ -418,6 +454,8 @@ bool NlpAssembly::fixGivenActiveSet(const std::vector<bool>& left_is_zero, const
   for (int variable : to_fix) x_upper_[variable] = 0.0;
   for (int row : complementarity_rows_) g_upper_[row] = kInfinity;
   fixed_left_ = left_is_zero;
+  biactive_pairs_ = biactive;
+  biactive_variables_ = std::move(biactive_variables);
   if (hook_) hook_(x);
   return true;
 }
@@ -428,6 +466,7 @@ std::vector<bool> NlpAssembly::flipBiactivePairs(const double* x) const {
   std::vector<double> free_sides(complementarities_.size());
   for (size_t p = 0; p < complementarities_.size(); ++p) {
     const Complementarity& comp = complementarities_[p];
+    if (biactive_pairs_[p]) continue;  // no side fixed, nothing to flip
     free_sides[p] = fixed_left_[p] ? comp.right_weight * evaluateLinear(comp.right, x)
                                    : comp.left_weight * evaluateLinear(comp.left, x);
     largest = std::max(largest, std::fabs(free_sides[p]));
@@ -435,6 +474,7 @@ std::vector<bool> NlpAssembly::flipBiactivePairs(const double* x) const {
   std::vector<bool> flipped = fixed_left_;
   bool any = false;
   for (size_t p = 0; p < complementarities_.size(); ++p) {
+    if (biactive_pairs_[p]) continue;
     if (free_sides[p] <= kBiactiveFraction * largest) {
       flipped[p] = !flipped[p];
       any = true;
@@ -450,6 +490,7 @@ void NlpAssembly::releaseActiveSet() {
   g_lower_.swap(saved_g_lower_);
   g_upper_.swap(saved_g_upper_);
   saved_x_lower_.clear();
+  biactive_variables_.clear();
 }
 
 double NlpAssembly::biactiveDescent(const double* x, const double* multipliers) const {
@@ -467,6 +508,8 @@ double NlpAssembly::biactiveDescent(const double* x, const double* multipliers) 
   }
   double descent = 0.0;
   for (size_t p = 0; p < complementarities_.size(); ++p) {
+    // A pair left biactive has both sides free: Ipopt's bound multipliers are its signs.
+    if (biactive_pairs_[p]) continue;
     const Complementarity& comp = complementarities_[p];
     const LinearExpression& fixed = fixed_left_[p] ? comp.left : comp.right;
     const LinearExpression& free = fixed_left_[p] ? comp.right : comp.left;

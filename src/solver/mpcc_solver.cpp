@@ -140,9 +140,10 @@ void record(MpccReport& report, const HomotopyStep& step, const SolveMonitor* mo
 /// solve the pairs it left biactive flipped (RelaxedMpcc::flipBiactivePairs), else the most
 /// ambiguous pairs flipped one at a time; `attempts` solves in all.
 void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& problem,
-            const PrimalDualPoint& converged, const IpoptSession::SolveSettings& settings,
-            int attempts, bool require_stationarity, const SolveMonitor* monitor,
-            MpccReport& report) {
+            const PrimalDualPoint& converged, double sigma,
+            const IpoptSession::SolveSettings& settings, int attempts, bool require_stationarity,
+            const SolveMonitor* monitor, MpccReport& report) {
+  problem.setBiactiveRule(options.polish_biactive_fraction, sigma);
   // After a failed attempt: its biactive pairs flipped, tried before the next attempt.
   std::vector<bool> biactive_flipped;
   int flip = -1;  // the identified active set, then its most ambiguous pairs flipped in turn
@@ -235,8 +236,8 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
     settings.warm_start_mu = options_.ipopt.previous_solution_mu;
     settings.warm_start_bound_push = options_.ipopt.previous_solution_bound_push;
     settings.tolerance = options_.ipopt.tolerance;
-    polish(*session_, options_, problem, point, settings, options_.polish_attempts, true, monitor_,
-           report);
+    polish(*session_, options_, problem, point, options_.complementarity_tolerance, settings,
+           options_.polish_attempts, true, monitor_, report);
     if (polishedToTolerance(report, options_)) {
       report.status = SolveStatus::kSuccess;
       report.message = "success: polished from the previous solution's active set, " +
@@ -313,12 +314,14 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
         sigma <= options_.early_polish_sigma * (1.0 + 1e-9)) {
       // Polish only an active set that two relaxations in a row identify, once: before it has
       // settled, polishing would fix it, and with it the grid's switch elements, too early.
+      problem.setBiactiveRule(options_.polish_biactive_fraction, sigma);
       const std::vector<bool> active_set = problem.identifyActiveSet(point.x.data());
       if (!active_set.empty() && active_set == settled_candidate && active_set != polished_set) {
         polished_set = active_set;
         IpoptSession::SolveSettings polish_settings = settings;
         polish_settings.tolerance = options_.ipopt.tolerance;
-        polish(*session_, options_, problem, point, polish_settings, 1, true, monitor_, report);
+        polish(*session_, options_, problem, point, sigma, polish_settings, 1, true, monitor_,
+               report);
         if (polishedToTolerance(report, options_)) {
           report.status = SolveStatus::kSuccess;
           break;
@@ -358,13 +361,13 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     settings.tolerance = options_.ipopt.tolerance;
     if (report.status == SolveStatus::kSuccess && !report.polished) {
       settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma;
-      polish(*session_, options_, problem, point, settings, options_.polish_attempts, false,
+      polish(*session_, options_, problem, point, sigma, settings, options_.polish_attempts, false,
              monitor_, report);
     } else if (!interrupted(report.status) && best_residual <= options_.polish_rescue_residual) {
       settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * best_sigma;
       report.complementarity_residual = best_residual;
-      polish(*session_, options_, problem, best, settings, options_.polish_attempts, false,
-             monitor_, report);
+      polish(*session_, options_, problem, best, best_sigma, settings, options_.polish_attempts,
+             false, monitor_, report);
       if (polishedToTolerance(report, options_)) report.status = SolveStatus::kSuccess;
     }
   }

@@ -1,6 +1,7 @@
 // NlpAssembly's active-set tools (nlp/nlp_assembly.cpp): biactiveDescent at a wrongly fixed
-// side, and active-set polishing (fixActiveSet) when a complementarity side holds fixed data, as
-// c and lambda at a simulation step's start point do: such a side cannot be made zero.
+// side, active-set polishing (fixActiveSet) when a complementarity side holds fixed data, as
+// c and lambda at a simulation step's start point do: such a side cannot be made zero, and
+// pairs left biactive (setBiactiveRule).
 #include <stdexcept>
 #include <vector>
 
@@ -78,6 +79,43 @@ TEST(PolishingWithData, RefusedWhenBothSidesHoldNonzeroData) {
   const double x[] = {0.2, 0.3, 0.0};
   EXPECT_FALSE(nlp.fixActiveSet(x));
   EXPECT_EQ(nlp.variableUpper(a), kInf);  // nothing changed
+}
+
+/// x _|_ y at sigma = 1e-2: the relaxation's scale is sqrt(sigma) = 0.1, so with the fraction 0.1
+/// a pair whose sides are both at most 0.01 is biactive and keeps both sides free.
+TEST(PolishingBiactivePairs, BothSidesFarBelowTheRelaxationStayFree) {
+  fesd::NlpAssembly nlp;
+  const int x = nlp.addVariables(1, 0.0, kInf);
+  const int y = nlp.addVariables(1, 0.0, kInf);
+  const int row = nlp.addComplementarity({{x, 1.0}}, {{y, 1.0}});
+  nlp.finalize();
+  nlp.setRelaxation(1e-2);
+  nlp.setBiactiveRule(0.1, 1e-2);
+  std::vector<double> g_lower(1), g_upper(1), x_lower(2), x_upper(2);
+  const double biactive[] = {2e-3, 5e-3};
+  ASSERT_TRUE(nlp.fixActiveSet(biactive));
+  EXPECT_EQ(nlp.variableUpper(x), kInf);
+  EXPECT_EQ(nlp.variableUpper(y), kInf);
+  nlp.getBounds(x_lower.data(), x_upper.data(), g_lower.data(), g_upper.data());
+  EXPECT_EQ(g_upper[row], kInf);  // the product row is dropped: the relaxed NLP of the pair
+  EXPECT_TRUE(nlp.fixedAtAboutZero(x));  // zero in the active set's meaning (step equilibration)
+  EXPECT_TRUE(nlp.fixedAtAboutZero(y));
+  const std::vector<double> no_multipliers(nlp.numConstraints(), 0.0);
+  EXPECT_EQ(nlp.biactiveDescent(biactive, no_multipliers.data()), 0.0);  // Ipopt's signs hold
+  EXPECT_TRUE(nlp.flipBiactivePairs(biactive).empty());
+  nlp.releaseActiveSet();
+  EXPECT_FALSE(nlp.fixedAtAboutZero(x));
+  EXPECT_EQ(nlp.identifyActiveSet(biactive), std::vector<bool>{false});
+  // One side at the relaxation's scale: complementary, its smaller side fixed as before.
+  const double complementary[] = {2e-3, 0.05};
+  ASSERT_TRUE(nlp.fixActiveSet(complementary));
+  EXPECT_EQ(nlp.variableUpper(x), 0.0);
+  EXPECT_EQ(nlp.variableUpper(y), kInf);
+  nlp.releaseActiveSet();
+  // Without the rule every pair gets a fixed side.
+  nlp.setBiactiveRule(0.0, 1e-2);
+  ASSERT_TRUE(nlp.fixActiveSet(biactive));
+  EXPECT_EQ(nlp.variableUpper(x), 0.0);
 }
 
 }  // namespace

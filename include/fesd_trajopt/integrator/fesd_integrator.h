@@ -15,6 +15,8 @@ namespace fesd {
 inline HomotopyOptions steepHomotopy() {
   HomotopyOptions options;
   options.sigma_reduction = 0.01;
+  // A step has no objective: a pair left biactive could end with both sides positive.
+  options.polish_biactive_fraction = 0.0;
   return options;
 }
 
@@ -22,6 +24,7 @@ inline HomotopyOptions steepHomotopy() {
 inline HomotopyOptions retryHomotopy() {
   HomotopyOptions options;
   options.vanishing_terms_weight = 0.0;
+  options.polish_biactive_fraction = 0.0;
   return options;
 }
 

@@ -78,10 +78,13 @@ class NlpAssembly : public RelaxedMpcc {
 
   double variableLower(int variable) const { return x_lower_[variable]; }
   double variableUpper(int variable) const { return x_upper_[variable]; }
-  /// Fixed (by the active set, or as data) at a value within kNegligibleFixedValue of zero.
+  /// Fixed (by the active set, or as data) at a value within kNegligibleFixedValue of zero, or
+  /// a side of a pair the fixed active set leaves biactive (zero in the active set's meaning,
+  /// though left to the NLP; setBiactiveRule).
   bool fixedAtAboutZero(int variable) const {
-    return x_lower_[variable] == x_upper_[variable] &&
-           std::fabs(x_lower_[variable]) <= kNegligibleFixedValue;
+    return (x_lower_[variable] == x_upper_[variable] &&
+            std::fabs(x_lower_[variable]) <= kNegligibleFixedValue) ||
+           (!biactive_variables_.empty() && biactive_variables_[variable]);
   }
   std::vector<double>& initialGuess() { return initial_; }
   const std::vector<double>& initialGuess() const { return initial_; }
@@ -108,6 +111,10 @@ class NlpAssembly : public RelaxedMpcc {
   double complementarityResidual(const double* x) const override;
   std::vector<bool> identifyActiveSet(const double* x) const override;
   bool fixActiveSet(const double* x, int flip = -1) override;
+  void setBiactiveRule(double fraction, double sigma) override {
+    biactive_fraction_ = fraction;
+    biactive_sigma_ = sigma;
+  }
   bool fixGivenActiveSet(const std::vector<bool>& left_is_zero, const double* x) override;
   std::vector<bool> flipBiactivePairs(const double* x) const override;
   void releaseActiveSet() override;
@@ -141,7 +148,8 @@ class NlpAssembly : public RelaxedMpcc {
   struct ActiveSetChoice {
     bool valid = true;  ///< false when some pair has fixed nonzero data on both sides
     std::vector<bool> left_is_zero;
-    std::vector<double> ambiguity;
+    std::vector<double> ambiguity;  ///< 0 for biactive pairs: there is nothing to flip
+    std::vector<bool> biactive;     ///< both sides vanish (setBiactiveRule): neither is fixed
   };
   ActiveSetChoice chooseActiveSet(const double* x) const;
   static double evaluateLinear(const LinearExpression& expression, const double* x);
@@ -170,6 +178,13 @@ class NlpAssembly : public RelaxedMpcc {
   /// Per pair while an active set is fixed: whether its left side is the one fixed to zero.
   std::vector<bool> fixed_left_;
   std::function<void(const double* x)> hook_;
+  double biactive_fraction_ = 0.0, biactive_sigma_ = 0.0;  ///< setBiactiveRule
+  /// While an active set is fixed: the pairs it leaves biactive, and their variables (empty when
+  /// there are none).
+  std::vector<bool> biactive_pairs_, biactive_variables_;
+  /// fixGivenActiveSet, leaving the `biactive` pairs' sides free.
+  bool fixPairs(const std::vector<bool>& left_is_zero, const std::vector<bool>& biactive,
+                const double* x);
   // Scratch buffers sized to the largest function term (evaluation is single-threaded per NLP).
   mutable std::vector<double> scratch_values_, scratch_jacobian_, scratch_hessian_,
       scratch_weights_, scratch_inputs_;

@@ -47,6 +47,16 @@ class RelaxedMpcc : public NlpProblem {
   /// zero side is not a sum of nonnegative free variables, when both sides of a pair hold fixed
   /// nonzero terms, or when there is no such ambiguous pair to flip.
   virtual bool fixActiveSet(const double* x, int flip = -1) = 0;
+  /// Biactive pairs in identifyActiveSet and fixActiveSet: with `fraction` > 0, a pair whose two
+  /// sides are both at most `fraction` times the relaxation's scale at `sigma` (the size both
+  /// sides of a product at the bound sigma would have) is biactive: fixActiveSet fixes neither
+  /// side and drops its product row, leaving the pair's part of the relaxed NLP (both sides >= 0),
+  /// and identifyActiveSet reports it as a right-side zero. 0 (default): every pair has a zero
+  /// side. Implementations without biactive pairs may ignore it.
+  virtual void setBiactiveRule(double fraction, double sigma) {
+    (void)fraction;
+    (void)sigma;
+  }
   /// The choice fixActiveSet(x) makes: per pair, whether its left side is the one fixed to zero;
   /// empty when fixActiveSet would refuse.
   virtual std::vector<bool> identifyActiveSet(const double* x) const = 0;

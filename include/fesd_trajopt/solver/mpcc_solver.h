@@ -83,6 +83,17 @@ struct HomotopyOptions {
   /// is kept.
   bool polish_active_set = true;
   int polish_attempts = 3;
+  /// Biactive pairs in polishing (RelaxedMpcc::setBiactiveRule): a pair whose two sides are both
+  /// below this fraction of the relaxation's scale sqrt(sigma) (in the pair's weighted units) is
+  /// left to the polished NLP with both sides >= 0 and no product row, instead of having its
+  /// (arbitrary) smaller side fixed. Fixing one side of a pair whose other side the remaining
+  /// equations hold at zero (a body resting against another without force: its c stays 0 while
+  /// nothing moves) leaves Ipopt a feasible set without interior (56-65 iterations of restoration
+  /// and tiny steps instead of 11 on the showcase with a disc in the way) and multipliers that
+  /// make the point look non-B-stationary (the fixed side's d Lagrangian is an artefact of the
+  /// barrier, 13-2543 there) although it is a minimiser of the relaxed NLP. 0: every pair gets
+  /// a fixed side.
+  double polish_biactive_fraction = 0.1;
   /// Early exit: once two converged relaxed NLPs in a row with sigma <= this identify the same
   /// active set, it is polished (once); a polished point that meets the complementarity
   /// tolerance and is B-stationary (RelaxedMpcc::biactiveDescent <= stationarity_tolerance) ends
