@@ -363,7 +363,8 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
       settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma;
       polish(*session_, options_, problem, point, sigma, settings, options_.polish_attempts, false,
              monitor_, report);
-    } else if (!interrupted(report.status) && best_residual <= options_.polish_rescue_residual) {
+    } else if (report.status != SolveStatus::kSuccess && !interrupted(report.status) &&
+               best_residual <= options_.polish_rescue_residual) {
       settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * best_sigma;
       report.complementarity_residual = best_residual;
       polish(*session_, options_, problem, best, best_sigma, settings, options_.polish_attempts,

@@ -41,6 +41,22 @@ TEST(MpccSolver, EarlyPolishingEndsTheHomotopyAtABStationaryPoint) {
   EXPECT_NEAR(report.solution[problem.y], 0.0, 1e-8);
 }
 
+TEST(MpccSolver, AnEarlyPolishThatSucceedsIsNotPolishedAgain) {
+  CornerMpcc problem;
+  fesd::HomotopyOptions options;
+  // Early polishing at a relaxation whose residual is below polish_rescue_residual (1e-4): the
+  // rescue polish of a homotopy that did not converge must not run after it succeeded.
+  options.early_polish_sigma = 1e-4;
+  const fesd::MpccReport report = problem.solve(options);
+  ASSERT_EQ(report.status, fesd::SolveStatus::kSuccess) << report.message;
+  int polishes = 0;
+  for (const fesd::HomotopyStep& step : report.history) polishes += step.sigma == 0.0;
+  EXPECT_EQ(polishes, 1);
+  EXPECT_DOUBLE_EQ(report.history.back().sigma, 0.0);
+  EXPECT_DOUBLE_EQ(report.history[report.history.size() - 2].sigma, 1e-5);
+  EXPECT_TRUE(report.b_stationary);
+}
+
 TEST(MpccSolver, SmoothProblemIsSolvedOnceWithoutHomotopy) {
   fesd::NlpAssembly nlp;
   const int x = nlp.addVariables(2, -10.0, 10.0);
