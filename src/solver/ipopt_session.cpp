@@ -284,6 +284,9 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
   Ipopt::OptionsList& options = *application_->Options();
   options.SetNumericValue("tol", solve_settings.tolerance);
   options.SetNumericValue("obj_scaling_factor", solve_settings.objective_scaling);
+  options.SetIntegerValue("max_iter", solve_settings.max_iterations > 0
+                                          ? solve_settings.max_iterations
+                                          : settings_.max_iterations);
   if (point.has_multipliers) {
     options.SetStringValue("mu_strategy", settings_.mu_strategy);
     options.SetStringValue("warm_start_init_point", "yes");

@@ -37,6 +37,7 @@ class IpoptSession {
     double objective_scaling = 1.0;
     const std::atomic<bool>* cancel = nullptr;  ///< set: stop at the next iteration
     double warm_start_bound_push = 0.0;         ///< > 0: replaces the session's for this solve
+    int max_iterations = 0;                     ///< > 0: replaces the session's for this solve
   };
   /// Solves from `point` and overwrites it with Ipopt's final iterate; a point with multipliers
   /// is a warm start.

@@ -135,6 +135,31 @@ void record(MpccReport& report, const HomotopyStep& step, const SolveMonitor* mo
   if (monitor != nullptr && monitor->on_step) monitor->on_step(step);
 }
 
+/// While the active set of a polished point is fixed: true if the branch with the pairs it left
+/// biactive flipped (HomotopyOptions::branch_check_iterations) offers no lower objective than
+/// `objective` from `polished`. Leaves that branch fixed.
+bool otherBranchKeepsPoint(IpoptSession& session, const HomotopyOptions& options,
+                           RelaxedMpcc& problem, const PrimalDualPoint& polished, double objective,
+                           const IpoptSession::SolveSettings& settings, const SolveMonitor* monitor,
+                           MpccReport& report) {
+  const std::vector<bool> other = problem.flipBiactivePairs(polished.x.data());
+  if (other.empty() || !problem.fixGivenActiveSet(other, polished.x.data())) return false;
+  PrimalDualPoint point = polished;
+  IpoptSession::SolveSettings check = settings;
+  check.max_iterations = options.branch_check_iterations;
+  const NlpOutcome outcome = session.solve(problem, point, check);
+  const bool solved = IpoptSession::converged(outcome.status);
+  record(report,
+         {0.0, outcome.iterations, problem.complementarityResidual(point.x.data()),
+          outcome.objective, IpoptSession::statusName(outcome.status), outcome.wall_seconds,
+          solved},
+         monitor);
+  report.iterations += outcome.iterations;
+  report.evaluation_seconds += outcome.evaluation_seconds;
+  report.ipopt_seconds += outcome.wall_seconds - outcome.evaluation_seconds;
+  return solved && outcome.objective >= objective - 1e-8 * std::max(1.0, std::fabs(objective));
+}
+
 /// The polishing stage: keeps `report` as it is unless a polished NLP converges (and, if
 /// `require_stationarity`, is B-stationary). Tries the identified active set; after a failed
 /// solve the pairs it left biactive flipped (RelaxedMpcc::flipBiactivePairs), else the most
@@ -166,7 +191,6 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
             ? problem.biactiveDescent(point.x.data(), point.constraint_multipliers.data())
             : std::numeric_limits<double>::infinity();
     if (!solved && !flipped_biactive) biactive_flipped = problem.flipBiactivePairs(point.x.data());
-    problem.releaseActiveSet();
     const double residual = problem.complementarityResidual(point.x.data());
     record(report,
            {0.0, outcome.iterations, residual, outcome.objective,
@@ -175,7 +199,12 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
     report.iterations += outcome.iterations;
     report.evaluation_seconds += outcome.evaluation_seconds;
     report.ipopt_seconds += outcome.wall_seconds - outcome.evaluation_seconds;
-    const bool stationary = descent <= options.stationarity_tolerance;
+    bool stationary = descent <= options.stationarity_tolerance;
+    if (solved && !stationary && require_stationarity && options.branch_check_iterations > 0) {
+      stationary = otherBranchKeepsPoint(session, options, problem, point, outcome.objective,
+                                         settings, monitor, report);
+    }
+    problem.releaseActiveSet();
     if (solved && residual <= report.complementarity_residual &&
         (stationary || !require_stationarity)) {
       report.solution = point.x;

@@ -1,6 +1,7 @@
 // The homotopy solver on tiny problems with known answers, and its status reporting.
 #include <gtest/gtest.h>
 
+#include "fesd_trajopt/function/affine_function.h"
 #include "support/corner_mpcc.h"
 
 namespace {
@@ -55,6 +56,47 @@ TEST(MpccSolver, AnEarlyPolishThatSucceedsIsNotPolishedAgain) {
   EXPECT_DOUBLE_EQ(report.history.back().sigma, 0.0);
   EXPECT_DOUBLE_EQ(report.history[report.history.size() - 2].sigma, 1e-5);
   EXPECT_TRUE(report.b_stationary);
+}
+
+/// min -x  s.t.  y = x,  0 <= x _|_ y >= 0 (and an unrelated pair): the origin is the only feasible point, so it is
+/// B-stationary, but with x fixed to 0 the row y = x pins the free side y to 0 as well and every
+/// multiplier gives d Lagrangian / dx = -1 - z_y < 0: the multiplier test says "descent". The
+/// other branch (y fixed, x free) keeps the point, which confirms it.
+TEST(MpccSolver, TheOtherBranchConfirmsAPointTheMultipliersCannot) {
+  for (const int check : {30, 0}) {
+    fesd::NlpAssembly nlp;
+    const int x = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+    const int y = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+    const int row = nlp.addRows(1, 0.0, 0.0);
+    nlp.addLinear(row, {{y, 1.0}, {x, -1.0}});
+    Eigen::SparseMatrix<double> minus_x(1, 1);
+    minus_x.insert(0, 0) = -1.0;
+    nlp.addFunctionTerm(std::make_shared<fesd::AffineFunction>(minus_x, Eigen::VectorXd::Zero(1)),
+                        {x}, -1, {{fesd::NlpAssembly::kObjective, 1.0}});
+    nlp.addComplementarity({{x, 1.0}}, {{y, 1.0}});
+    // A second pair, u = 1 _|_ v = 0, gives the scale on which y counts as zero.
+    const int u = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+    const int v = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+    nlp.addFunctionTerm(fesd::QuadraticFunction::weightedDistance(Eigen::Vector2d::Ones(),
+                                                                  Eigen::Vector2d(1.0, 0.0)),
+                        {u, v}, -1, {{fesd::NlpAssembly::kObjective, 1.0}});
+    nlp.addComplementarity({{u, 1.0}}, {{v, 1.0}});
+    nlp.finalize();
+    fesd::HomotopyOptions options;
+    options.early_polish_sigma = 1e-2;
+    options.branch_check_iterations = check;
+    const fesd::MpccReport report = fesd::MpccSolver(options).solve(nlp, {0.5, 0.5, 1.0, 0.1});
+    ASSERT_EQ(report.status, fesd::SolveStatus::kSuccess) << report.message;
+    EXPECT_NEAR(report.solution[x], 0.0, 1e-8);
+    EXPECT_NEAR(report.solution[y], 0.0, 1e-8);
+    if (check > 0) {
+      // sigma = 1, 0.1, 0.01, 0.001, the polished NLP and the other branch: accepted there.
+      EXPECT_TRUE(report.b_stationary) << report.message;
+      EXPECT_EQ(report.history.size(), 6u);
+    } else {
+      EXPECT_GT(report.history.size(), 6u);  // the homotopy goes on
+    }
+  }
 }
 
 TEST(MpccSolver, SmoothProblemIsSolvedOnceWithoutHomotopy) {
