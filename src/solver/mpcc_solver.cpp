@@ -149,11 +149,11 @@ bool otherBranchKeepsPoint(IpoptSession& session, const HomotopyOptions& options
   check.max_iterations = options.branch_check_iterations;
   const NlpOutcome outcome = session.solve(problem, point, check);
   const bool solved = IpoptSession::converged(outcome.status);
-  record(report,
-         {0.0, outcome.iterations, problem.complementarityResidual(point.x.data()),
-          outcome.objective, IpoptSession::statusName(outcome.status), outcome.wall_seconds,
-          solved},
-         monitor);
+  record(
+      report,
+      {0.0, outcome.iterations, problem.complementarityResidual(point.x.data()), outcome.objective,
+       IpoptSession::statusName(outcome.status), outcome.wall_seconds, solved},
+      monitor);
   report.iterations += outcome.iterations;
   report.evaluation_seconds += outcome.evaluation_seconds;
   report.ipopt_seconds += outcome.wall_seconds - outcome.evaluation_seconds;

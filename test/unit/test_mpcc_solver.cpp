@@ -58,10 +58,10 @@ TEST(MpccSolver, AnEarlyPolishThatSucceedsIsNotPolishedAgain) {
   EXPECT_TRUE(report.b_stationary);
 }
 
-/// min -x  s.t.  y = x,  0 <= x _|_ y >= 0 (and an unrelated pair): the origin is the only feasible point, so it is
-/// B-stationary, but with x fixed to 0 the row y = x pins the free side y to 0 as well and every
-/// multiplier gives d Lagrangian / dx = -1 - z_y < 0: the multiplier test says "descent". The
-/// other branch (y fixed, x free) keeps the point, which confirms it.
+/// min -x  s.t.  y = x,  0 <= x _|_ y >= 0 (and an unrelated pair): the origin is the only feasible
+/// point, so it is B-stationary, but with x fixed to 0 the row y = x pins the free side y to 0 as
+/// well and every multiplier gives d Lagrangian / dx = -1 - z_y < 0: the multiplier test says
+/// "descent". The other branch (y fixed, x free) keeps the point, which confirms it.
 TEST(MpccSolver, TheOtherBranchConfirmsAPointTheMultipliersCannot) {
   for (const int check : {30, 0}) {
     fesd::NlpAssembly nlp;

@@ -97,7 +97,7 @@ TEST(PolishingBiactivePairs, BothSidesFarBelowTheRelaxationStayFree) {
   EXPECT_EQ(nlp.variableUpper(x), kInf);
   EXPECT_EQ(nlp.variableUpper(y), kInf);
   nlp.getBounds(x_lower.data(), x_upper.data(), g_lower.data(), g_upper.data());
-  EXPECT_EQ(g_upper[row], kInf);  // the product row is dropped: the relaxed NLP of the pair
+  EXPECT_EQ(g_upper[row], kInf);         // the product row is dropped: the relaxed NLP of the pair
   EXPECT_TRUE(nlp.fixedAtAboutZero(x));  // zero in the active set's meaning (step equilibration)
   EXPECT_TRUE(nlp.fixedAtAboutZero(y));
   const std::vector<double> no_multipliers(nlp.numConstraints(), 0.0);
