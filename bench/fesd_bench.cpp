@@ -7,6 +7,7 @@
 #include <string>
 
 #include "commands.h"
+#include "fesd_trajopt/solver/heap_policy.h"
 
 namespace {
 
@@ -129,6 +130,7 @@ void usage() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  fesd::keepLargeAllocationsInTheHeap();
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "help")) {
     usage();
     return argc < 2 ? 2 : 0;

@@ -1,9 +1,11 @@
 // fesd_trajopt_node: trajectory optimisation with FESD as a ROS service.
 #include <ros/ros.h>
 
+#include "fesd_trajopt/solver/heap_policy.h"
 #include "trajopt_node.h"
 
 int main(int argc, char** argv) {
+  fesd::keepLargeAllocationsInTheHeap();  // each request ends with releaseFreeMemory()
   ros::init(argc, argv, "fesd_trajopt");
   ros::NodeHandle node, private_node("~");
   try {

@@ -8,6 +8,7 @@
 #include "fesd_trajopt/examples/circle_example.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/solver/heap_policy.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 #include "scene_request.h"
 #include "solution_message.h"
@@ -133,12 +134,15 @@ bool TrajoptNode::solveTrajectory(fesd_trajopt::SolveTrajectory::Request& reques
 
 bool TrajoptNode::simulate(fesd_trajopt::Simulate::Request& request,
                            fesd_trajopt::Simulate::Response& response) {
-  return answerCatchingErrors("simulate", response, [&] { handleSimulate(request, response); });
+  answerCatchingErrors("simulate", response, [&] { handleSimulate(request, response); });
+  fesd::releaseFreeMemory();
+  return true;
 }
 
 void TrajoptNode::plan(const fesd_trajopt::PlanRequest& request, const fesd::SolveMonitor* monitor,
                        fesd_trajopt::PlanTrajectoryResult& answer) {
   answerCatchingErrors("plan", answer, [&] { handlePlan(request, monitor, answer); });
+  fesd::releaseFreeMemory();  // the heap keeps what the solve freed until trimmed
 }
 
 void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
