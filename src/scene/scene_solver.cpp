@@ -118,11 +118,19 @@ void chooseFirstPairs(const SceneTask& task, const std::vector<ContactPair>& can
 bool measureGaps(const SceneTask& task, const SceneSolveOptions& options, int round,
                  SceneOutcome& outcome, std::string& rounds_note) {
   const std::vector<Eigen::VectorXd> path = densePath(outcome.trajectory);
+  const std::vector<Eigen::VectorXd> stage_points = densePath(outcome.trajectory, 0);
   std::vector<std::string> added;
   for (PairDecision& decision : outcome.decisions) {
-    if (!decision.modelled && !decision.checked) continue;
+    if (decision.modelled) {
+      decision.min_distance = 0.0;
+      for (size_t i = 0; i < stage_points.size(); ++i) {
+        const double gap = pairGap(task.scene, decision.pair, stage_points[i]);
+        decision.min_distance = i == 0 ? gap : std::min(decision.min_distance, gap);
+      }
+      continue;
+    }
+    if (!decision.checked) continue;
     decision.min_distance = smallestGap(task.scene, decision.pair, path);
-    if (decision.modelled) continue;
     std::ostringstream reason;
     reason.precision(3);
     if (outcome.status == SolveStatus::kSuccess &&
@@ -282,9 +290,8 @@ Verification verifyOutcome(const SceneTask& task, const SceneOutcome& outcome,
     const std::vector<Eigen::VectorXd> path = densePath(verification.trajectory);
     grew = false;
     for (PairDecision& decision : decisions) {
-      if (decision.checked &&
-          withinMargin(task.scene, decision.pair, smallestGap(task.scene, decision.pair, path),
-                       margin)) {
+      if (decision.checked && withinMargin(task.scene, decision.pair,
+                                           smallestGap(task.scene, decision.pair, path), margin)) {
         decision.modelled = true;
         decision.checked = false;
         grew = true;

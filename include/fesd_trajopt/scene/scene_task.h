@@ -62,8 +62,10 @@ struct PairDecision {
   std::string reason;
   /// In reach but not modelled: checked on the solution instead (lazy pairs, solveSceneTask).
   bool checked = false;
-  /// The smallest gap between the pair's surfaces along the answer (modelled and checked pairs;
-  /// NaN for the others and before a solve).
+  /// The smallest gap between the pair's surfaces along the answer: a modelled pair's at the
+  /// stage points (where the plan holds c >= 0; between them its collocation polynomial may dip
+  /// by the interpolation error), a checked pair's along the sampled polynomials (densePath).
+  /// NaN for the others and before a solve.
   double min_distance = std::numeric_limits<double>::quiet_NaN();
 };
 
