@@ -84,9 +84,10 @@ int planningSweep(const Arguments& args) {
     }
   }
   const double slowest = walls.empty() ? 0.0 : *std::max_element(walls.begin(), walls.end());
-  std::printf("# %d scenes: %d not SUCCESS, %d SUCCESS with the target missed by > 1e-3, %d with "
-              "penetration below -1e-6 of a pair's size; wall time median %.3f s, slowest %.3f s",
-              count, failed, missed, penetrating, median(walls), slowest);
+  std::printf(
+      "# %d scenes: %d not SUCCESS, %d SUCCESS with the target missed by > 1e-3, %d with "
+      "penetration below -1e-6 of a pair's size; wall time median %.3f s, slowest %.3f s",
+      count, failed, missed, penetrating, median(walls), slowest);
   if (showcase_seconds > 0.0) {
     std::printf(" (%.2fx and %.2fx the showcase's)", median(walls) / showcase_seconds,
                 slowest / showcase_seconds);

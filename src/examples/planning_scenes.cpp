@@ -90,8 +90,8 @@ PlanningScene clutteredScene(unsigned seed) {
   const int obstacles = extras / 3, in_the_way = std::min(random.integer(0, 2), extras - obstacles);
   int discs = 0, tries = 0;
   while (discs + static_cast<int>(scene.obstacles().size()) < extras && ++tries < 10000) {
-    const bool obstacle = static_cast<int>(scene.obstacles().size()) < obstacles &&
-                          discs >= extras - obstacles;
+    const bool obstacle =
+        static_cast<int>(scene.obstacles().size()) < obstacles && discs >= extras - obstacles;
     const double r = random(0.5, 1.5) * scale;
     Eigen::VectorXd p(2);
     if (!obstacle && discs < in_the_way) {
@@ -155,8 +155,8 @@ PlanningRun runScene(const PlanningScene& scene, const SceneSolveOptions& option
   run.verification = verifyOutcome(scene.task, run.outcome, fine, options.pair_margin);
   run.verification_seconds = verification_time.wallSeconds();
   if (run.verification.status == SolveStatus::kSuccess) {
-    run.verification_gap = smallestRelativeGap(scene.task, run.outcome.decisions,
-                                               run.verification.trajectory.states);
+    run.verification_gap =
+        smallestRelativeGap(scene.task, run.outcome.decisions, run.verification.trajectory.states);
   }
   return run;
 }

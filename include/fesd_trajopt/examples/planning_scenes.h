@@ -18,8 +18,8 @@ struct PlanningScene {
   std::string family;
   unsigned seed = 0;
   SceneTask task;
-  int pushed = -1;         ///< the body whose target the scene is about
-  bool reachable = true;   ///< whether the generator made that target reachable
+  int pushed = -1;          ///< the body whose target the scene is about
+  bool reachable = true;    ///< whether the generator made that target reachable
   std::string description;  ///< one line: base, extra bodies and obstacles
 };
 
