@@ -56,10 +56,12 @@ const std::map<std::string, Command>& commands() {
         "    --reference-elements=8 --start=plan|constant (first guess)"}},
       {"planning-sweep",
        {fesd_bench::planningSweep,
-        "Seeded random planning scenes (families: cluttered) solved as the node solves them and\n"
+        "Seeded random planning scenes (families: push, wall, beside, second, showcase,\n"
+        "    cluttered; examples/planning_scenes.h) solved as the node solves them and\n"
         "    verified with every pair in reach: status, wall time, pairs in reach / modelled /\n"
         "    rounds, target distance, penetration; CSV and a summary against the showcase.\n"
-        "    --families=cluttered --first-seed=0 --scenes=20 --pairs=lazy|all --margin=0.1\n"
+        "    --families=push,wall,beside,second,showcase,cluttered --first-seed=0 --scenes=20\n"
+        "    --pairs=lazy|all --margin=0.1\n"
         "    --elements=3 --stages=2 --budget=120 --showcase=true"}},
       {"replan",
        {fesd_bench::replan,

@@ -50,14 +50,63 @@ SceneTask pusherAndPuck(SeededUniform& random) {
   return task;
 }
 
+/// A pusher and a puck: radii in [0.2, 0.8], the puck at the origin, its target `distance` away
+/// along `direction` (weight 100), the pusher `gap` from it at an angle of up to `spread` from
+/// straight behind, |u| <= 4 per coordinate, T = 3, N = 20.
+SceneTask randomPush(SeededUniform& random, const Eigen::VectorXd& direction, double distance,
+                     double spread) {
+  const int dim = static_cast<int>(direction.size());
+  const double r_pusher = random(0.2, 0.8), r_puck = random(0.2, 0.8);
+  Eigen::VectorXd behind = -direction;
+  Eigen::VectorXd side = random.unitVector(dim);
+  side -= side.dot(direction) * direction;
+  if (side.norm() > 1e-6) {
+    const double angle = random(-spread, spread);
+    behind = std::cos(angle) * behind + std::sin(angle) * side.normalized();
+  }
+  const double gap = random(0.2, 2.0);
+  SceneTask task;
+  task.scene = DiscScene(dim);
+  task.scene.bodies() = {
+      {"pusher", r_pusher, Eigen::VectorXd((r_pusher + r_puck + gap) * behind), true},
+      {"puck", r_puck, Eigen::VectorXd::Zero(dim), false}};
+  task.bodies.resize(2);
+  task.bodies[0].max_speed = 4.0;
+  task.bodies[1].target = distance * direction;
+  task.bodies[1].target_weight = 100.0;
+  task.horizon = 3.0;
+  task.num_intervals = 20;
+  return task;
+}
+
+PlanningScene described(const std::string& family, unsigned seed, SceneTask task, int pushed,
+                        bool reachable, const std::string& what) {
+  PlanningScene result;
+  result.family = family;
+  result.seed = seed;
+  result.task = std::move(task);
+  result.pushed = pushed;
+  result.reachable = reachable;
+  std::ostringstream text;
+  text << family << " seed " << seed << ": " << what;
+  result.description = text.str();
+  return result;
+}
+
 }  // namespace
 
 const std::vector<std::string>& families() {
-  static const std::vector<std::string> names{"cluttered"};
+  static const std::vector<std::string> names{"push",   "wall",     "beside",
+                                              "second", "showcase", "cluttered"};
   return names;
 }
 
 PlanningScene scene(const std::string& family, unsigned seed) {
+  if (family == "push") return pushScene(seed);
+  if (family == "wall") return wallScene(seed);
+  if (family == "beside") return besideScene(seed);
+  if (family == "second") return secondBodyScene(seed);
+  if (family == "showcase") return showcaseScene(seed);
   if (family == "cluttered") return clutteredScene(seed);
   throw std::invalid_argument("planning_scenes: unknown family '" + family + "'");
 }
@@ -159,6 +208,97 @@ PlanningRun runScene(const PlanningScene& scene, const SceneSolveOptions& option
         smallestRelativeGap(scene.task, run.outcome.decisions, run.verification.trajectory.states);
   }
   return run;
+}
+
+PlanningScene pushScene(unsigned seed) {
+  SeededUniform random(seed);
+  const int dim = random() < 1.0 / 3.0 ? 3 : 2;
+  const double distance = random(1.0, 4.0);
+  const Eigen::VectorXd direction = random.unitVector(dim);
+  SceneTask task = randomPush(random, direction, distance, 60.0 * M_PI / 180.0);
+  std::ostringstream what;
+  what << dim << "-D push of " << distance;
+  return described("push", seed, std::move(task), 1, true, what.str());
+}
+
+PlanningScene wallScene(unsigned seed) {
+  SeededUniform random(seed);
+  const Eigen::VectorXd direction = random.unitVector(2);
+  SceneTask task = randomPush(random, direction, random(1.0, 4.0), 0.0);
+  const double r_puck = task.scene.bodies()[1].radius;
+  // The pusher no larger than the puck: straight behind it, it fits beside the wall too.
+  task.scene.bodies()[0].radius = std::min(task.scene.bodies()[0].radius, r_puck);
+  const double kind = random();
+  const double gap = kind < 1.0 / 3.0   ? 0.0
+                     : kind < 2.0 / 3.0 ? random(0.0, 0.05)
+                                        : random(0.05, 0.3);
+  // The wall on one side of the push line, its normal pointing back at the puck.
+  Eigen::Vector2d normal(-direction(1), direction(0));
+  if (random() < 0.5) normal = -normal;
+  task.scene.walls().push_back({"wall", normal, -(r_puck + gap)});
+  std::ostringstream what;
+  what << "push along a wall " << gap << " from the puck";
+  return described("wall", seed, std::move(task), 1, true, what.str());
+}
+
+PlanningScene besideScene(unsigned seed) {
+  SeededUniform random(seed);
+  const Eigen::VectorXd direction = random.unitVector(2);
+  const double distance = random(1.0, 4.0);
+  SceneTask task = randomPush(random, direction, distance, 30.0 * M_PI / 180.0);
+  const double r_puck = task.scene.bodies()[1].radius;
+  const Eigen::Vector2d side(-direction(1), direction(0));
+  const int count = random.integer(1, 3);
+  int placed = 0;
+  for (int tries = 0; placed < count && tries < 100; ++tries) {
+    const double r = random(0.1, 0.6), clear = random(0.02, 0.3);
+    const Eigen::VectorXd p = random(0.2, 0.9) * distance * direction +
+                              (random() < 0.5 ? 1.0 : -1.0) * (r_puck + r + clear) * side;
+    if (!fits(task.scene, p, r, 0.05)) continue;
+    task.scene.obstacles().push_back({"post_" + std::to_string(placed++), r, p});
+  }
+  std::ostringstream what;
+  what << "push past " << placed << " obstacle(s) beside the path";
+  return described("beside", seed, std::move(task), 1, true, what.str());
+}
+
+PlanningScene secondBodyScene(unsigned seed) {
+  SeededUniform random(seed);
+  const Eigen::VectorXd direction = random.unitVector(2);
+  const double distance = random(1.0, 4.0);
+  SceneTask task = randomPush(random, direction, distance, 30.0 * M_PI / 180.0);
+  const double r_puck = task.scene.bodies()[1].radius, r = random(0.2, 0.8);
+  const Eigen::Vector2d side(-direction(1), direction(0));
+  const bool in_the_way = random() < 0.25;
+  const double lateral = in_the_way ? random(0.0, r_puck + r) : r_puck + r + random(0.05, 1.0);
+  Eigen::VectorXd p =
+      random(0.3, 0.8) * distance * direction + (random() < 0.5 ? 1.0 : -1.0) * lateral * side;
+  if (!fits(task.scene, p, r, 0.05)) p += (3.0 * r + 1.0) * side;  // off the pusher's start
+  task.scene.bodies().push_back({"second", r, p, false});
+  task.bodies.emplace_back();
+  return described("second", seed, std::move(task), 1, true,
+                   in_the_way ? "a second puck in the way" : "a second puck beside the path");
+}
+
+PlanningScene showcaseScene(unsigned seed) {
+  SeededUniform random(seed);
+  SceneTask task = manipulation_example::task(40);
+  const bool beyond = random() < 1.0 / 3.0;
+  Eigen::Vector2d start(random(-1.5, 1.5), random(-1.5, 1.5));
+  Eigen::Vector2d target(random(-2.0, 2.0), random(8.0, 12.0));
+  if (beyond) {
+    start.x() = 0.0;
+    target.x() = (random() < 0.5 ? -1.0 : 1.0) * random(0.9, 1.5);
+  } else {
+    start.x() = random(-0.3, 0.3);  // the actuators reach behind it from both sides
+    target.x() = random(-0.4, 0.4);
+  }
+  task.scene.bodies()[2].position = start;
+  task.bodies[2].target = target;
+  std::ostringstream what;
+  what << "showcase, object (" << start.x() << ", " << start.y() << ") to (" << target.x() << ", "
+       << target.y() << ")" << (beyond ? ", beyond the actuators' reach" : "");
+  return described("showcase", seed, std::move(task), 2, !beyond, what.str());
 }
 
 }  // namespace planning_scenes

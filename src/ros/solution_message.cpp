@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <vector>
 
 #include "scene_request.h"
@@ -67,6 +68,8 @@ uint8_t statusCode(fesd::SolveStatus status) {
       return Codes::CANCELLED;
     case fesd::SolveStatus::kAccuracyNotMet:
       return Codes::ACCURACY_NOT_MET;
+    case fesd::SolveStatus::kTargetNotReached:
+      return Codes::TARGET_NOT_REACHED;
   }
   return Codes::SOLVER_ERROR;
 }
@@ -127,10 +130,11 @@ std::vector<nav_msgs::Path> bodyPaths(const fesd_trajopt::Solution& solution) {
 }
 
 fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
-                                     const std::vector<fesd::PairDecision>& decisions,
-                                     const fesd::Trajectory& trajectory,
-                                     const fesd::MpccReport& report) {
+                                     const fesd::SceneOutcome& outcome) {
   const fesd::DiscScene& scene = task.scene;
+  const fesd::Trajectory& trajectory = outcome.trajectory;
+  const fesd::MpccReport& report = outcome.report;
+  const std::vector<fesd::PairDecision>& decisions = outcome.decisions;
   const int dim = scene.dimension();
   fesd_trajopt::Solution solution;
   fillCommon(trajectory, report, solution);
@@ -139,6 +143,9 @@ fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
     body.name = scene.bodies()[b].name;
     body.radius = scene.bodies()[b].radius;
     body.actuated = scene.bodies()[b].actuated;
+    body.target_distance = b < static_cast<int>(outcome.target_distances.size())
+                               ? outcome.target_distances[b]
+                               : std::numeric_limits<double>::quiet_NaN();
     for (const Eigen::VectorXd& x : trajectory.states) {
       body.positions.push_back(point(x.segment(scene.stateIndex(b), dim)));
     }

@@ -5,6 +5,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "fesd_trajopt/discretization/trajectory.h"
+#include "fesd_trajopt/scene/scene_solver.h"
 #include "fesd_trajopt/scene/scene_task.h"
 #include "fesd_trajopt/solver/mpcc_solver.h"
 
@@ -22,12 +23,11 @@ void setUnsolved(Answer& answer, uint8_t status, const std::string& message) {
   answer.message = answer.solution.message = message;
 }
 
-/// The Solution message of a scene trajectory: times, each body's positions and controls, the
-/// full state, switches (named by the modelled pairs), statistics and pair decisions.
+/// The Solution message of a scene task's outcome: times, each body's positions, controls and
+/// distance from its target, the full state, switches (named by the modelled pairs), statistics
+/// and pair decisions.
 fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
-                                     const std::vector<fesd::PairDecision>& decisions,
-                                     const fesd::Trajectory& trajectory,
-                                     const fesd::MpccReport& report);
+                                     const fesd::SceneOutcome& outcome);
 
 /// The parts every solution has: times, steps, full states, statistics.
 void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& report,

@@ -211,7 +211,7 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
                   << task.num_intervals << " intervals x " << outcome.structure.elements
                   << " elements, n_s = " << outcome.structure.stages);
   fesd_trajopt::Solution& solution = answer.solution;
-  solution = sceneSolution(task, outcome.decisions, outcome.trajectory, outcome.report);
+  solution = sceneSolution(task, outcome);
   solution.status = statusCode(outcome.status);
   solution.message = outcome.message;  // with the warning on unresolved switches
   solution.statistics.start = fesd::startName(outcome.start, "push plan", "previous round");
@@ -241,7 +241,7 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
   }
   finish(answer, build.notes);
   ROS_INFO_STREAM("fesd_trajopt: " << answer.message << " (" << stopwatch.wallSeconds() << " s)");
-  if (outcome.status == fesd::SolveStatus::kSuccess) {
+  if (fesd::solvedItsNlp(outcome.status)) {  // a solution of its NLP: it can warm-start
     std::lock_guard<std::mutex> lock(last_solution_mutex_);
     last_solution_ = std::make_shared<const fesd::SceneOutcome>(outcome);
   }
@@ -345,7 +345,7 @@ void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
   const fesd::SceneOutcome outcome =
       fesd::simulateSceneTask(task, controls, config_.limits, options);
   if (!outcome.invalid.empty()) return refuse(response, outcome.invalid);
-  response.solution = sceneSolution(task, outcome.decisions, outcome.trajectory, outcome.report);
+  response.solution = sceneSolution(task, outcome);
   response.solution.message = outcome.message;
   response.solution.header.stamp = ros::Time::now();
   response.solution.header.frame_id = config_.frame_id;

@@ -41,12 +41,13 @@ SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
     if (!outcome.verified) outcome.verification_error = std::numeric_limits<double>::infinity();
     rungs.push_back(
         {stages, elements, outcome.verification_error, rung_time.wallSeconds(), outcome.status});
-    const bool success = outcome.status == SolveStatus::kSuccess;
+    // A plan that misses an unreachable target is still a plan whose accuracy counts.
+    const bool success = solvedItsNlp(outcome.status);
     met = success && outcome.verification_error <= target_accuracy;
     cancelled = outcome.status == SolveStatus::kCancelled;
     out_of_time = outcome.status == SolveStatus::kTimeout || stopwatch.wallSeconds() >= budget;
     // Keep the most accurate successful rung (a failed verification's error is infinite).
-    if (rungs.size() == 1 || (success && (best.status != SolveStatus::kSuccess ||
+    if (rungs.size() == 1 || (success && (!solvedItsNlp(best.status) ||
                                           outcome.verification_error < best.verification_error))) {
       best = std::move(outcome);
     }
@@ -71,7 +72,7 @@ SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
   // its own status.
   if (cancelled) {
     best.status = SolveStatus::kCancelled;
-  } else if (!met && best.status == SolveStatus::kSuccess) {
+  } else if (!met && solvedItsNlp(best.status)) {
     best.status = out_of_time ? SolveStatus::kTimeout : SolveStatus::kAccuracyNotMet;
   }
   return best;

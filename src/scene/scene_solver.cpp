@@ -112,6 +112,30 @@ void chooseFirstPairs(const SceneTask& task, const std::vector<ContactPair>& can
   }
 }
 
+/// Each body's distance from its target at the end; a successful outcome that misses one by more
+/// than targetTolerance is kTargetNotReached, its message naming every target missed.
+void judgeTargets(const SceneTask& task, SceneOutcome& outcome) {
+  const DiscScene& scene = task.scene;
+  const Eigen::VectorXd end = outcome.trajectory.finalState();
+  std::ostringstream missed;
+  missed.precision(3);
+  outcome.target_distances.assign(scene.bodies().size(), std::numeric_limits<double>::quiet_NaN());
+  for (size_t b = 0; b < scene.bodies().size(); ++b) {
+    const BodyTask& t = task.bodies[b];
+    if (t.target.size() == 0 || !(t.target_weight > 0.0)) continue;
+    const double distance = (scene.position(static_cast<int>(b), end) - t.target).norm();
+    outcome.target_distances[b] = distance;
+    if (distance <= targetTolerance(t.target_weight)) continue;
+    missed << (missed.tellp() > 0 ? "; " : "") << "body '" << scene.bodies()[b].name << "' ends "
+           << distance << " from its target (" << t.target.transpose() << "), tolerance "
+           << targetTolerance(t.target_weight);
+  }
+  if (outcome.status == SolveStatus::kSuccess && missed.tellp() > 0) {
+    outcome.status = SolveStatus::kTargetNotReached;
+    outcome.message = "target not reached: " + missed.str() + "; " + outcome.message;
+  }
+}
+
 /// Every pair in reach (modelled or checked) measured along the outcome's trajectory, between
 /// element boundaries too. After a successful round, the checked pairs that came within the
 /// margin become modelled for the next round (named in `rounds_note`): true when there is one.
@@ -156,9 +180,13 @@ bool measureGaps(const SceneTask& task, const SceneSolveOptions& options, int ro
 
 }  // namespace
 
+bool solvedItsNlp(SolveStatus status) {
+  return status == SolveStatus::kSuccess || status == SolveStatus::kTargetNotReached;
+}
+
 std::string warmStartRefusal(const SceneOutcome& previous, const SceneOutcome& now) {
   // Only a success is a solution of its NLP: an interrupted solve may hold another stage's point.
-  if (!previous.solved() || previous.status != SolveStatus::kSuccess ||
+  if (!previous.solved() || !solvedItsNlp(previous.status) ||
       static_cast<int>(previous.report.solution.size()) != previous.sizes.variables) {
     return "no previous solution";
   }
@@ -254,6 +282,7 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     if (!measureGaps(task, options, round, outcome, rounds_note)) break;
   }
   outcome.message += rounds_note;
+  judgeTargets(task, outcome);
   if (options.verify && outcome.status != SolveStatus::kCancelled) {
     SimulationOptions fine;
     fine.discretization = options.verification;

@@ -130,6 +130,10 @@ std::vector<double> bodyReach(const SceneTask& task) {
 
 }  // namespace
 
+double targetTolerance(double target_weight) {
+  return 1e-3 * std::max(1.0, 100.0 / target_weight);
+}
+
 std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
   const DiscScene& scene = task.scene;
   const int dim = scene.dimension();

@@ -29,6 +29,8 @@ std::string statusName(SolveStatus status) {
       return "cancelled";
     case SolveStatus::kAccuracyNotMet:
       return "accuracy_not_met";
+    case SolveStatus::kTargetNotReached:
+      return "target_not_reached";
   }
   return "unknown";
 }

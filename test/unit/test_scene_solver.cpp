@@ -148,4 +148,27 @@ TEST(SolveSceneTask, LazyPairsModelWhatThePushNeedsAndCheckTheRestOnTheAnswer) {
   EXPECT_LT((all.trajectory.finalState() - lazy.trajectory.finalState()).norm(), 1e-6);
 }
 
+TEST(SolveSceneTask, ATargetThePlanCannotMeetIsSaidNotReachedWithItsDistance) {
+  // The puck 4 away in T = 2 at |u| <= 2: within the conservative reach (2 sqrt(8) = 5.7), so
+  // not refused, but the pusher must first cover the 2 to the puck: the puck gets about 2.
+  fesd::SceneTask task = pushingTask();
+  task.bodies[1].target = Eigen::Vector2d(4.0, 0.0);
+  task.bodies[1].target_weight = 100.0;
+  fesd::SceneSolveOptions options;
+  options.ocp.discretization.num_elements = 2;
+  const fesd::SceneOutcome outcome = fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
+  ASSERT_TRUE(outcome.solved()) << outcome.invalid << outcome.infeasible;
+  EXPECT_EQ(outcome.status, fesd::SolveStatus::kTargetNotReached) << outcome.message;
+  ASSERT_EQ(outcome.target_distances.size(), 3u);
+  EXPECT_TRUE(std::isnan(outcome.target_distances[0]));  // the pusher has no target
+  EXPECT_GT(outcome.target_distances[1], 1.0);
+  EXPECT_NEAR(outcome.target_distances[1],
+              (outcome.trajectory.finalState().segment<2>(2) - Eigen::Vector2d(4, 0)).norm(),
+              1e-12);
+  EXPECT_NE(outcome.message.find("body 'puck' ends"), std::string::npos) << outcome.message;
+  EXPECT_TRUE(fesd::solvedItsNlp(outcome.status));  // still a plan to start from
+  EXPECT_DOUBLE_EQ(fesd::targetTolerance(1000.0), 1e-3);
+  EXPECT_DOUBLE_EQ(fesd::targetTolerance(1.0), 0.1);
+}
+
 }  // namespace

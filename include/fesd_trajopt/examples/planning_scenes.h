@@ -36,6 +36,29 @@ PlanningScene scene(const std::string& family, unsigned seed);
 /// target and the stretch beyond it, so the target stays reachable by pushing through.
 PlanningScene clutteredScene(unsigned seed);
 
+/// "push": a pusher and a puck of random radii (0.2 to 0.8) in the plane or (a third of them) in
+/// space, the puck's target 1 to 4 away in a random direction, the pusher starting beside or
+/// behind it, 0.2 to 2 away. Reachable.
+PlanningScene pushScene(unsigned seed);
+
+/// "wall": a push along a wall that touches the puck at the start (a third), nearly touches it
+/// (gap below 0.05) or runs up to 0.3 beside it, the target as near the wall. Reachable.
+PlanningScene wallScene(unsigned seed);
+
+/// "beside": a push with one to three fixed obstacles beside the puck's path, 0.02 to 0.3 clear
+/// of its swept corridor. Reachable.
+PlanningScene besideScene(unsigned seed);
+
+/// "second": a push with a second passive puck near the path (0.05 to 1 clear of the swept
+/// corridor, or in it for a quarter of the seeds). Reachable.
+PlanningScene secondBodyScene(unsigned seed);
+
+/// "showcase": the showcase with the object's start moved within 1.5 of the origin and its
+/// target within 2 of (0, 10), or (a third of the seeds) the target moved sideways to |x| in
+/// [0.9, 1.5], beyond where the actuators' workspace bounds let them push it (x <= -2.5 and
+/// x >= 2.5 keep them from behind the object): unreachable.
+PlanningScene showcaseScene(unsigned seed);
+
 /// A planning scene solved and checked as the sweep reports it.
 struct PlanningRun {
   SceneOutcome outcome;

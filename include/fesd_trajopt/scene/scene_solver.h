@@ -64,6 +64,8 @@ struct SceneOutcome {
   /// Solves with a growing set of modelled pairs (SceneSolveOptions::lazy_pairs): 1 when the
   /// first set held; 0 for simulations.
   int pair_rounds = 0;
+  /// Per body: its end position's distance from its target (NaN without a target).
+  std::vector<double> target_distances;
 
   bool solved() const { return invalid.empty() && infeasible.empty(); }
   int modelledPairs() const {
@@ -75,6 +77,10 @@ struct SceneOutcome {
                                           [](const PairDecision& d) { return d.checked; }));
   }
 };
+
+/// Whether an outcome of this status is a solution of its NLP: a success, or one whose only
+/// shortfall is a target it did not reach.
+bool solvedItsNlp(SolveStatus status);
 
 /// Why `previous` cannot warm-start `now` (a task whose NLP is built: structure and sizes set):
 /// not a successful solve, warmStartMismatch, or other NLP sizes; "" when it can.

@@ -31,6 +31,11 @@ struct SceneTask {
   std::vector<ContactPair> allowed_pairs;
 };
 
+/// How near a body must end to its target for the target to count as met: 1e-3 for target
+/// weights >= 100, 1e-3 * 100 / weight below (the optimum of a soft target trades its distance
+/// against the control effort, more so the lighter its weight).
+double targetTolerance(double target_weight);
+
 /// Limits on the size of a task (requests beyond them are refused).
 struct TaskLimits {
   int max_bodies = 30;

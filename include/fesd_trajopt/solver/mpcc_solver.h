@@ -131,6 +131,9 @@ enum class SolveStatus {
   kSolverError,            ///< Ipopt failed otherwise (restoration failure, bad values, ...)
   kCancelled,              ///< SolveMonitor::cancel was set; the best iterate is returned
   kAccuracyNotMet,         ///< an accuracy target was not met on any rung (the scene layer's)
+  /// Solved, but a body (or joint) ends farther from its target than the target tolerance (the
+  /// scene layer's): the best plan found, not what was asked for.
+  kTargetNotReached,
 };
 std::string statusName(SolveStatus status);
 /// The solve was stopped from outside (timeout or cancel): keep the best iterate, try nothing more.
