@@ -1,0 +1,66 @@
+#include "fesd_trajopt/kinematics/inverse_kinematics.h"
+
+#include <algorithm>
+
+#include "fesd_trajopt/kinematics/forward_kinematics.h"
+
+namespace fesd {
+namespace {
+
+/// dq = J^T (J J^T + mu^2 I)^-1 dp with J J^T accumulated column by column (fixed 3 x 3).
+Eigen::VectorXd dampedStep(const Eigen::Matrix3Xd& jacobian, const Eigen::Vector3d& error,
+                           double damping) {
+  Eigen::Matrix3d normal = damping * damping * Eigen::Matrix3d::Identity();
+  for (int j = 0; j < jacobian.cols(); ++j) normal += jacobian.col(j) * jacobian.col(j).transpose();
+  const Eigen::Vector3d weights = normal.ldlt().solve(error);
+  Eigen::VectorXd step(jacobian.cols());
+  for (int j = 0; j < jacobian.cols(); ++j) step(j) = jacobian.col(j).dot(weights);
+  return step;
+}
+
+Eigen::VectorXd clampToLimits(const KinematicModel& model, Eigen::VectorXd q) {
+  for (int j = 0; j < model.numCoordinates(); ++j) {
+    q(j) = std::clamp(q(j), model.joints[j].lower, model.joints[j].upper);
+  }
+  return q;
+}
+
+}  // namespace
+
+InverseKinematicsResult sphereInverseKinematics(const KinematicModel& model, int sphere,
+                                                const Eigen::Vector3d& target,
+                                                const Eigen::VectorXd& q0,
+                                                const InverseKinematicsOptions& options) {
+  constexpr int kHalvings = 30;
+  KinematicData data;
+  InverseKinematicsResult result{clampToLimits(model, q0), 0.0, 0, false};
+  forwardKinematics(model, result.q, data);
+  result.distance = (target - data.sphere_centres[sphere]).norm();
+  while (result.distance > options.tolerance && result.iterations < options.max_iterations) {
+    ++result.iterations;
+    Eigen::VectorXd step =
+        dampedStep(sphereJacobian(model, data, sphere), target - data.sphere_centres[sphere],
+                   options.damping);
+    const double largest = step.lpNorm<Eigen::Infinity>();
+    if (largest > options.max_step) step *= options.max_step / largest;
+    bool progressed = false;
+    for (int halving = 0; halving < kHalvings && !progressed; ++halving, step *= 0.5) {
+      const Eigen::VectorXd candidate = clampToLimits(model, result.q + step);
+      forwardKinematics(model, candidate, data);
+      const double distance = (target - data.sphere_centres[sphere]).norm();
+      if (distance < result.distance * (1.0 - options.stall_fraction)) {
+        result.q = candidate;
+        result.distance = distance;
+        progressed = true;
+      }
+    }
+    if (!progressed) {
+      forwardKinematics(model, result.q, data);
+      break;
+    }
+  }
+  result.reached = result.distance <= options.tolerance;
+  return result;
+}
+
+}  // namespace fesd
