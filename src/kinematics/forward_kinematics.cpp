@@ -22,8 +22,7 @@ void sortThree(int& i, int& j, int& k) {
 
 }  // namespace
 
-void forwardKinematics(const KinematicModel& model, const Eigen::VectorXd& q,
-                       KinematicData& data) {
+void forwardKinematics(const KinematicModel& model, const Eigen::VectorXd& q, KinematicData& data) {
   const int nq = model.numCoordinates();
   data.joint_frames.resize(nq);
   data.joint_axes.resize(nq);
@@ -44,7 +43,8 @@ void forwardKinematics(const KinematicModel& model, const Eigen::VectorXd& q,
   for (std::size_t s = 0; s < model.spheres.size(); ++s) {
     const int joint = model.links[model.spheres[s].link].joint;
     const Eigen::Vector3d& centre = model.spheres[s].joint_centre;
-    data.sphere_centres[s] = joint < 0 ? centre : Eigen::Vector3d(data.joint_frames[joint] * centre);
+    data.sphere_centres[s] =
+        joint < 0 ? centre : Eigen::Vector3d(data.joint_frames[joint] * centre);
   }
 }
 
@@ -124,8 +124,8 @@ Eigen::MatrixXd weightedSphereThirdDerivative(const KinematicModel& model,
   return result;
 }
 
-SphereClearance sphereClearance(const KinematicModel& model, const KinematicData& data,
-                                int sphere, const Eigen::Vector3d& point, double radius) {
+SphereClearance sphereClearance(const KinematicModel& model, const KinematicData& data, int sphere,
+                                const Eigen::Vector3d& point, double radius) {
   const Eigen::Vector3d gap = data.sphere_centres[sphere] - point;
   const double reach = model.spheres[sphere].radius + radius;
   const Eigen::Matrix3Xd jacobian = sphereJacobian(model, data, sphere);

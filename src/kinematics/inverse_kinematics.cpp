@@ -38,9 +38,8 @@ InverseKinematicsResult sphereInverseKinematics(const KinematicModel& model, int
   result.distance = (target - data.sphere_centres[sphere]).norm();
   while (result.distance > options.tolerance && result.iterations < options.max_iterations) {
     ++result.iterations;
-    Eigen::VectorXd step =
-        dampedStep(sphereJacobian(model, data, sphere), target - data.sphere_centres[sphere],
-                   options.damping);
+    Eigen::VectorXd step = dampedStep(sphereJacobian(model, data, sphere),
+                                      target - data.sphere_centres[sphere], options.damping);
     const double largest = step.lpNorm<Eigen::Infinity>();
     if (largest > options.max_step) step *= options.max_step / largest;
     bool progressed = false;

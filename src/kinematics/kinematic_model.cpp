@@ -22,11 +22,16 @@ Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
 
 const char* shapeName(int type) {
   switch (type) {
-    case urdf::Geometry::SPHERE: return "sphere";
-    case urdf::Geometry::BOX: return "box";
-    case urdf::Geometry::CYLINDER: return "cylinder";
-    case urdf::Geometry::MESH: return "mesh";
-    default: return "unknown shape";
+    case urdf::Geometry::SPHERE:
+      return "sphere";
+    case urdf::Geometry::BOX:
+      return "box";
+    case urdf::Geometry::CYLINDER:
+      return "cylinder";
+    case urdf::Geometry::MESH:
+      return "mesh";
+    default:
+      return "unknown shape";
   }
 }
 
@@ -60,18 +65,20 @@ class ModelBuilder {
   KinematicModelResult build() {
     KinematicModelResult result;
     model_.root_link = urdf_.getRoot()->name;
-    std::vector<PendingLink> stack{{urdf_.getRoot(), -1, Eigen::Isometry3d::Identity(),
-                                    Eigen::Isometry3d::Identity()}};
+    std::vector<PendingLink> stack{
+        {urdf_.getRoot(), -1, Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity()}};
     while (!stack.empty()) {
       const PendingLink pending = std::move(stack.back());
       stack.pop_back();
       addLink(pending);
       if (!error_.empty()) break;
-      const auto& children = pending.link->child_joints;
-      for (auto joint = children.rbegin(); joint != children.rend() && error_.empty(); ++joint) {
-        followJoint(**joint, pending, stack);
+      std::vector<PendingLink> children;
+      for (const urdf::JointSharedPtr& joint : pending.link->child_joints) {
+        followJoint(*joint, pending, children);
+        if (!error_.empty()) break;
       }
       if (!error_.empty()) break;
+      stack.insert(stack.end(), children.rbegin(), children.rend());  // the first on top
     }
     result.error = error_;
     if (error_.empty()) result.model = std::move(model_);
@@ -111,14 +118,16 @@ class ModelBuilder {
     }
   }
 
+  /// Adds a moving joint's coordinate or a free link; the child links to visit go to children.
   void followJoint(const urdf::Joint& joint, const PendingLink& parent,
-                   std::vector<PendingLink>& stack) {
+                   std::vector<PendingLink>& children) {
     const urdf::LinkConstSharedPtr child = urdf_.getLink(joint.child_link_name);
     if (!child) return;
     const Eigen::Isometry3d origin = toIsometry(joint.parent_to_joint_origin_transform);
     switch (joint.type) {
       case urdf::Joint::FIXED:
-        stack.push_back({child, parent.joint, parent.offset * origin, parent.zero_pose * origin});
+        children.push_back(
+            {child, parent.joint, parent.offset * origin, parent.zero_pose * origin});
         return;
       case urdf::Joint::PLANAR:
       case urdf::Joint::FLOATING:
@@ -134,8 +143,8 @@ class ModelBuilder {
         return;
     }
     if (model_.numCoordinates() >= options_.max_coordinates) {
-      error_ = "the URDF has more than " + std::to_string(options_.max_coordinates) +
-               " moving joints";
+      error_ =
+          "the URDF has more than " + std::to_string(options_.max_coordinates) + " moving joints";
       return;
     }
     const Eigen::Vector3d axis(joint.axis.x, joint.axis.y, joint.axis.z);
@@ -160,8 +169,7 @@ class ModelBuilder {
     coordinate.upper = bounded ? joint.limits->upper : infinity;
     coordinate.max_velocity = joint.limits ? joint.limits->velocity : 0.0;
     model_.joints.push_back(std::move(coordinate));
-    stack.push_back(
-        {child, index, Eigen::Isometry3d::Identity(), parent.zero_pose * origin});
+    children.push_back({child, index, Eigen::Isometry3d::Identity(), parent.zero_pose * origin});
   }
 
   const urdf::ModelInterface& urdf_;
@@ -172,8 +180,8 @@ class ModelBuilder {
 
 template <typename Items>
 int indexByName(const Items& items, const std::string& name) {
-  const auto found = std::find_if(items.begin(), items.end(),
-                                  [&](const auto& item) { return item.name == name; });
+  const auto found =
+      std::find_if(items.begin(), items.end(), [&](const auto& item) { return item.name == name; });
   return found == items.end() ? -1 : static_cast<int>(found - items.begin());
 }
 
@@ -185,8 +193,12 @@ const std::vector<int>& KinematicModel::chainOf(int sphere) const {
   return joint < 0 ? kNoJoints : joints[joint].chain;
 }
 
-int KinematicModel::jointIndex(const std::string& name) const { return indexByName(joints, name); }
-int KinematicModel::linkIndex(const std::string& name) const { return indexByName(links, name); }
+int KinematicModel::jointIndex(const std::string& name) const {
+  return indexByName(joints, name);
+}
+int KinematicModel::linkIndex(const std::string& name) const {
+  return indexByName(links, name);
+}
 int KinematicModel::sphereIndex(const std::string& name) const {
   return indexByName(spheres, name);
 }

@@ -16,8 +16,7 @@ struct KinematicData {
 };
 
 /// Fills data for the configuration q (one entry per coordinate of the model).
-void forwardKinematics(const KinematicModel& model, const Eigen::VectorXd& q,
-                       KinematicData& data);
+void forwardKinematics(const KinematicModel& model, const Eigen::VectorXd& q, KinematicData& data);
 
 /// The frame of a link in the world, from data of forwardKinematics.
 Eigen::Isometry3d linkFrame(const KinematicModel& model, const KinematicData& data, int link);
@@ -30,8 +29,7 @@ Eigen::Isometry3d linkFrame(const KinematicModel& model, const KinematicData& da
 Eigen::Vector3d sphereJacobianColumn(const KinematicModel& model, const KinematicData& data,
                                      int sphere, int joint);
 /// The 3 x nq Jacobian dp_s/dq.
-Eigen::Matrix3Xd sphereJacobian(const KinematicModel& model, const KinematicData& data,
-                                int sphere);
+Eigen::Matrix3Xd sphereJacobian(const KinematicModel& model, const KinematicData& data, int sphere);
 /// d^2 p_s / dq_i dq_j.
 Eigen::Vector3d sphereSecondDerivative(const KinematicModel& model, const KinematicData& data,
                                        int sphere, int i, int j);
@@ -56,7 +54,7 @@ struct SphereClearance {
   Eigen::VectorXd gradient;
   Eigen::MatrixXd hessian;
 };
-SphereClearance sphereClearance(const KinematicModel& model, const KinematicData& data,
-                                int sphere, const Eigen::Vector3d& point, double radius);
+SphereClearance sphereClearance(const KinematicModel& model, const KinematicData& data, int sphere,
+                                const Eigen::Vector3d& point, double radius);
 
 }  // namespace fesd

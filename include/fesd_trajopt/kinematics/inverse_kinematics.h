@@ -7,9 +7,9 @@
 namespace fesd {
 
 struct InverseKinematicsOptions {
-  double damping = 1e-2;        ///< mu in J^T (J J^T + mu^2 I)^-1 dp
-  double max_step = 0.2;        ///< largest change of one coordinate per iteration
-  double tolerance = 1e-10;     ///< distance to the target that counts as reached
+  double damping = 1e-2;     ///< mu in J^T (J J^T + mu^2 I)^-1 dp
+  double max_step = 0.2;     ///< largest change of one coordinate per iteration
+  double tolerance = 1e-10;  ///< distance to the target that counts as reached
   int max_iterations = 500;
   /// A stall: an iteration that shortens the distance by less than this fraction of it.
   double stall_fraction = 1e-9;
@@ -19,7 +19,7 @@ struct InverseKinematicsResult {
   Eigen::VectorXd q;
   double distance;  ///< |p_s(q) - target|
   int iterations;
-  bool reached;     ///< distance <= tolerance
+  bool reached;  ///< distance <= tolerance
 };
 
 /// Moves one sphere's centre towards a target by damped least squares from q0, clamping every

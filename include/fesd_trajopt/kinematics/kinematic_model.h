@@ -19,17 +19,17 @@ struct KinematicJoint {
   /// The joint's frame at q_j = 0 in its parent joint's moved frame (the world for parent -1);
   /// fixed joints in between are folded in.
   Eigen::Isometry3d origin;
-  int parent;                 ///< the nearest moving joint above, -1 at the root
-  std::vector<int> chain;     ///< the moving joints from the root down to this one, inclusive
-  double lower, upper;        ///< position limits; +-infinity for continuous joints
-  double max_velocity;        ///< the URDF's velocity limit; 0 when it gives none
+  int parent;              ///< the nearest moving joint above, -1 at the root
+  std::vector<int> chain;  ///< the moving joints from the root down to this one, inclusive
+  double lower, upper;     ///< position limits; +-infinity for continuous joints
+  double max_velocity;     ///< the URDF's velocity limit; 0 when it gives none
 };
 
 /// A link of the kinematic tree: rigidly attached to the moved frame of a joint (or the world).
 struct KinematicLink {
   std::string name;
-  int joint;                  ///< the nearest moving joint above, -1 when fixed to the world
-  Eigen::Isometry3d offset;   ///< the link's frame in that joint's moved frame
+  int joint;                 ///< the nearest moving joint above, -1 when fixed to the world
+  Eigen::Isometry3d offset;  ///< the link's frame in that joint's moved frame
 };
 
 /// A collision sphere: `<link>/sphere_<k>`, k the index among that link's `<collision>` elements.

@@ -13,6 +13,8 @@ namespace fesd {
 std::string firstJointLeavingPlane(const KinematicModel& model);
 
 /// Planar in (x, y): no joint leaves the plane.
-inline bool isPlanar(const KinematicModel& model) { return firstJointLeavingPlane(model).empty(); }
+inline bool isPlanar(const KinematicModel& model) {
+  return firstJointLeavingPlane(model).empty();
+}
 
 }  // namespace fesd
