@@ -31,26 +31,34 @@ InverseKinematicsResult sphereInverseKinematics(const KinematicModel& model, int
                                                 const Eigen::Vector3d& target,
                                                 const Eigen::VectorXd& q0,
                                                 const InverseKinematicsOptions& options) {
-  constexpr int kHalvings = 30;
+  // A rejected step is retried with ten times the damping (towards a short gradient step), an
+  // accepted one relaxes it again: near a singularity the undamped direction is dominated by
+  // the stretch the arm cannot make, and shortening it alone would keep that direction.
+  constexpr int kDampingIncreases = 12;
   KinematicData data;
   InverseKinematicsResult result{clampToLimits(model, q0), 0.0, 0, false};
   forwardKinematics(model, result.q, data);
   result.distance = (target - data.sphere_centres[sphere]).norm();
+  double damping = options.damping;
   while (result.distance > options.tolerance && result.iterations < options.max_iterations) {
     ++result.iterations;
-    Eigen::VectorXd step = dampedStep(sphereJacobian(model, data, sphere),
-                                      target - data.sphere_centres[sphere], options.damping);
-    const double largest = step.lpNorm<Eigen::Infinity>();
-    if (largest > options.max_step) step *= options.max_step / largest;
+    const Eigen::Matrix3Xd jacobian = sphereJacobian(model, data, sphere);
+    const Eigen::Vector3d error = target - data.sphere_centres[sphere];
     bool progressed = false;
-    for (int halving = 0; halving < kHalvings && !progressed; ++halving, step *= 0.5) {
+    for (int increase = 0; increase <= kDampingIncreases && !progressed; ++increase) {
+      Eigen::VectorXd step = dampedStep(jacobian, error, damping);
+      const double largest = step.lpNorm<Eigen::Infinity>();
+      if (largest > options.max_step) step *= options.max_step / largest;
       const Eigen::VectorXd candidate = clampToLimits(model, result.q + step);
       forwardKinematics(model, candidate, data);
       const double distance = (target - data.sphere_centres[sphere]).norm();
       if (distance < result.distance * (1.0 - options.stall_fraction)) {
         result.q = candidate;
         result.distance = distance;
+        damping = std::max(options.damping, 0.1 * damping);
         progressed = true;
+      } else {
+        damping *= 10.0;
       }
     }
     if (!progressed) {

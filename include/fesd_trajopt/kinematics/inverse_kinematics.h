@@ -23,7 +23,8 @@ struct InverseKinematicsResult {
 };
 
 /// Moves one sphere's centre towards a target by damped least squares from q0, clamping every
-/// step at the joint limits (a step that does not get closer is halved, up to a stall).
+/// step at the joint limits; a step that does not get closer is retried with more damping, and
+/// when none does (a stall: the target is out of reach or the limits stop the way) it ends.
 /// Deterministic arithmetic: only fixed-size 3 x 3 solves, no BLAS.
 InverseKinematicsResult sphereInverseKinematics(const KinematicModel& model, int sphere,
                                                 const Eigen::Vector3d& target,
