@@ -1,8 +1,9 @@
 #include "fesd_trajopt/kinematics/kinematic_model.h"
 
 #include <algorithm>
+#include <cmath>
+#include <exception>
 #include <limits>
-#include <stdexcept>
 #include <utility>
 
 #include <urdf_parser/urdf_parser.h>
@@ -41,10 +42,7 @@ struct FlatTeardown {
   urdf::ModelInterfaceSharedPtr model;
   ~FlatTeardown() {
     if (!model) return;
-    for (auto& entry : model->links_) {
-      entry.second->child_links.clear();
-      entry.second->child_joints.clear();
-    }
+    for (auto& entry : model->links_) entry.second->child_links.clear();
   }
 };
 
@@ -90,9 +88,9 @@ class ModelBuilder {
     const int index = static_cast<int>(model_.links.size());
     model_.links.push_back({pending.link->name, pending.joint, pending.offset});
     const auto& collisions = pending.link->collision_array;
+    const std::string prefix = pending.link->name + "/";
     for (std::size_t k = 0; k < collisions.size(); ++k) {
       const urdf::Collision& collision = *collisions[k];
-      const std::string name = pending.link->name + "/";
       if (!collision.geometry) continue;
       const Eigen::Isometry3d local = toIsometry(collision.origin);
       double radius = 0.0;
@@ -103,7 +101,7 @@ class ModelBuilder {
         radius = static_cast<const urdf::Cylinder&>(*collision.geometry).radius;
       }
       if (radius <= 0.0) {
-        model_.ignored_shapes.push_back(name + "collision_" + std::to_string(k) + " (" +
+        model_.ignored_shapes.push_back(prefix + "collision_" + std::to_string(k) + " (" +
                                         shapeName(collision.geometry->type) + ")");
         continue;
       }
@@ -114,7 +112,7 @@ class ModelBuilder {
       }
       const Eigen::Vector3d centre = local.translation();
       model_.spheres.push_back(
-          {name + "sphere_" + std::to_string(k), index, centre, pending.offset * centre, radius});
+          {prefix + "sphere_" + std::to_string(k), index, centre, pending.offset * centre, radius});
     }
   }
 
