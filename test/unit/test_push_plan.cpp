@@ -188,4 +188,31 @@ TEST(PushPlan, ThePushedBodyGoesAroundAnObstacleInItsWay) {
             1e-12);
 }
 
+TEST(PushPlan, ATargetBeyondThePushersReachIsReplacedByTheNearestEndTheyCanPushTo) {
+  // The showcase's actuators stay at |x| >= 2.5, 3 from the object's centre in contact: behind
+  // an object at x > 0.5 only actuator_2 fits, and it cannot push it straight up.
+  const fesd::SceneTask reachable = example::task(40, Eigen::Vector2d(0.3, 10.0));
+  EXPECT_TRUE(fesd::planPushes(reachable, example::contactPairs()).short_pushes.empty());
+  const Eigen::Vector2d target(1.2, 10.0);
+  const fesd::PushPlan plan = fesd::planPushes(example::task(40, target), example::contactPairs());
+  ASSERT_EQ(plan.short_pushes.size(), 1u);
+  EXPECT_EQ(plan.short_pushes[0].body, 2);
+  const Eigen::VectorXd end = plan.short_pushes[0].end;
+  EXPECT_GT(end.x(), 0.2);  // as far right as both actuators can still push from behind
+  EXPECT_LT(end.x(), 0.6);
+  EXPECT_LT((end - target).norm(), 1.0);
+  ASSERT_EQ(plan.pushes.size(), 2u);  // both push, to the end the plan aims at
+  EXPECT_LT((plan.guess.state(plan.release_time).segment<2>(4) - end).norm(), 1e-6);
+}
+
+TEST(PushPlan, ATargetInsideAnObstacleIsReplacedByAnEndClearOfIt) {
+  fesd::SceneTask task = example::task(40, Eigen::Vector2d(0.0, 10.0));
+  task.scene.obstacles().push_back({"rock", 1.0, Eigen::Vector2d(0.0, 10.5)});
+  const fesd::PushPlan plan = fesd::planPushes(task, example::contactPairs());
+  ASSERT_EQ(plan.short_pushes.size(), 1u);
+  const double clearance = (plan.short_pushes[0].end - Eigen::Vector2d(0.0, 10.5)).norm();
+  EXPECT_GE(clearance, 3.0);  // the object's radius 2 plus the rock's 1
+  EXPECT_LT(clearance, 3.0 + 0.1);
+}
+
 }  // namespace
