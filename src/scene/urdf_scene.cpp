@@ -5,20 +5,9 @@
 #include <urdf_parser/urdf_parser.h>
 #include <Eigen/Geometry>
 
+#include "fesd_trajopt/kinematics/urdf_pose.h"
+
 namespace fesd {
-namespace {
-
-Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.translation() << pose.position.x, pose.position.y, pose.position.z;
-  t.linear() =
-      Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
-          .normalized()
-          .toRotationMatrix();
-  return t;
-}
-
-}  // namespace
 
 UrdfScene sceneFromUrdf(const std::string& xml, bool planar, const UrdfLimits& limits) {
   UrdfScene result;
@@ -62,7 +51,7 @@ UrdfScene sceneFromUrdf(const std::string& xml, bool planar, const UrdfLimits& l
     const urdf::CollisionSharedPtr collision = link->collision;
     bool used = false;
     if (collision && collision->geometry) {
-      const Eigen::Isometry3d frame = visit.pose * toIsometry(collision->origin);
+      const Eigen::Isometry3d frame = visit.pose * isometryFromUrdf(collision->origin);
       double radius = 0.0;
       if (collision->geometry->type == urdf::Geometry::SPHERE) {
         radius = static_cast<const urdf::Sphere&>(*collision->geometry).radius;
@@ -86,7 +75,8 @@ UrdfScene sceneFromUrdf(const std::string& xml, bool planar, const UrdfLimits& l
     for (auto joint = link->child_joints.rbegin(); joint != link->child_joints.rend(); ++joint) {
       const urdf::LinkConstSharedPtr child = model->getLink((*joint)->child_link_name);
       if (!child) continue;
-      stack.push_back({child, visit.pose * toIsometry((*joint)->parent_to_joint_origin_transform),
+      stack.push_back({child,
+                       visit.pose * isometryFromUrdf((*joint)->parent_to_joint_origin_transform),
                        visit.fixed && (*joint)->type == urdf::Joint::FIXED});
     }
   }

@@ -9,6 +9,7 @@
 #include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/scene/pair_check.h"
 #include "fesd_trajopt/scene/push_plan.h"
+#include "support/scene_tasks.h"
 
 namespace {
 
@@ -115,23 +116,8 @@ TEST(PushPlan, PathsStepAroundWhatTheyWouldPassThrough) {
   }
 }
 
-/// A pusher (R = 0.5, |u| <= 4) at (-2, 0) and a puck (R = 0.5) to be pushed from the origin to
-/// (3, 0) in T = 2, with `extra` bodies and obstacles.
-fesd::SceneTask pushAlongX() {
-  fesd::SceneTask task;
-  task.scene.bodies() = {{"pusher", 0.5, Eigen::Vector2d(-2.0, 0.0), true},
-                         {"puck", 0.5, Eigen::Vector2d(0.0, 0.0), false}};
-  task.bodies.resize(2);
-  task.bodies[0].max_speed = 4.0;
-  task.bodies[1].target = Eigen::Vector2d(3.0, 0.0);
-  task.bodies[1].target_weight = 100.0;
-  task.horizon = 2.0;
-  task.num_intervals = 20;
-  return task;
-}
-
 TEST(PushPlan, ABodyInThePushedBodysWayIsShovedAlongAsTheProjectionWould) {
-  fesd::SceneTask task = pushAlongX();
+  fesd::SceneTask task = fesd_test::pushAlongX();
   task.scene.bodies().push_back({"rock", 0.5, Eigen::Vector2d(1.5, 0.3), false});
   task.bodies.emplace_back();
   const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();  // pusher/puck first
@@ -172,7 +158,7 @@ TEST(PushPlan, ABodyInThePushedBodysWayIsShovedAlongAsTheProjectionWould) {
 }
 
 TEST(PushPlan, ThePushedBodyGoesAroundAnObstacleInItsWay) {
-  fesd::SceneTask task = pushAlongX();
+  fesd::SceneTask task = fesd_test::pushAlongX();
   task.scene.obstacles() = {{"post", 0.4, Eigen::Vector2d(1.5, 0.0)}};  // dead ahead
   const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();
   const fesd::PushPlan plan = fesd::planPushes(task, pairs);
