@@ -94,6 +94,7 @@ NodeConfig loadNodeConfig(const ros::NodeHandle& node) {
   node.param("limits/max_elements", c.limits.max_elements, c.limits.max_elements);
   node.param("limits/max_stages", c.limits.max_stages, c.limits.max_stages);
   node.param("limits/max_horizon", c.limits.max_horizon, c.limits.max_horizon);
+  node.param("limits/max_solver_mib", c.limits.max_solver_mib, c.limits.max_solver_mib);
   node.param("scene_urdf", c.scene_urdf, std::string());
   XmlRpc::XmlRpcValue bodies;
   if (node.getParam("bodies", bodies)) {

@@ -9,6 +9,7 @@
 #include "fesd_trajopt/scene/moving_part.h"
 #include "fesd_trajopt/scene/pair_check.h"
 #include "fesd_trajopt/scene/push_plan.h"
+#include "fesd_trajopt/solver/memory_estimate.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 
 namespace fesd {
@@ -114,6 +115,20 @@ void chooseFirstPairs(const SceneTask& task, const std::vector<ContactPair>& can
 
 /// Each body's distance from its target at the end; a successful outcome that misses one by more
 /// than targetTolerance is kTargetNotReached, its message naming every target missed.
+/// Why an NLP is refused before Ipopt starts (its estimated memory beyond the limit), or "".
+std::string nlpTooLarge(const NlpAssembly& nlp, size_t modelled_pairs, const SceneTask& task,
+                        const SceneSolveOptions& options, const TaskLimits& limits) {
+  const double mib =
+      estimatedSolverMib(nlp, task.num_intervals * options.ocp.discretization.num_elements);
+  if (mib <= limits.max_solver_mib) return "";
+  std::ostringstream message;
+  message << "the NLP is too large to solve here: about " << static_cast<long>(mib)
+          << " MiB estimated for its solve (" << nlp.numVariables() << " variables, "
+          << nlp.numConstraints() << " constraints, " << modelled_pairs
+          << " modelled contact pairs) > limits/max_solver_mib " << limits.max_solver_mib;
+  return message.str();
+}
+
 /// The task with each target the push plan found out of the pushers' reach replaced by the
 /// nearest end it pushes to.
 SceneTask reachableTask(const SceneTask& task, const PushPlan& plan) {
@@ -270,6 +285,18 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     solver.setMonitor(options.monitor);
     const NlpAssembly& nlp = solver.discretization().nlp();
     outcome.sizes = {nlp.numVariables(), nlp.numConstraints(), nlp.numComplementarities()};
+    const std::string too_large = nlpTooLarge(nlp, part.modelled.size(), task, options, limits);
+    if (!too_large.empty() && round == 1) {
+      outcome.invalid = too_large + "; ask for fewer intervals, elements or stages";
+      return outcome;
+    }
+    if (!too_large.empty()) {
+      outcome.status = SolveStatus::kSolverError;
+      outcome.message = "pair round " + std::to_string(round) + ": " + too_large +
+                        "; the plan of the round before comes within the margin of pairs it does "
+                        "not model";
+      break;
+    }
     outcome.structure = planStructure(aimed, outcome, options.ocp.discretization);
     const TrajectoryGuess guess = partGuess(aimed, part, plan.guess, candidates);
     OcpSolution solution;

@@ -188,4 +188,15 @@ TEST(SolveSceneTask, ATargetBeyondThePushersReachIsAnsweredAsFastAsAReachableOne
       << outcome.message;
 }
 
+TEST(SolveSceneTask, AnNlpBeyondTheMemoryLimitIsRefusedWithItsEstimate) {
+  fesd::TaskLimits limits;
+  limits.max_solver_mib = 0.01;
+  const fesd::SceneOutcome refused =
+      fesd::solveSceneTask(fesd_test::pushingTask(), limits, fesd::SceneSolveOptions{});
+  EXPECT_NE(refused.invalid.find("the NLP is too large to solve here: about"), std::string::npos)
+      << refused.invalid;
+  EXPECT_NE(refused.invalid.find("> limits/max_solver_mib 0.01"), std::string::npos);
+  EXPECT_EQ(refused.report.iterations, 0);
+}
+
 }  // namespace

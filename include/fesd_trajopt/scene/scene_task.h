@@ -46,6 +46,8 @@ struct TaskLimits {
   int max_stages = 4;
   double max_horizon = 1e4;
   double max_coordinate = 1e6;
+  /// An NLP whose solve is estimated to need more memory (estimatedSolverMib) is refused.
+  double max_solver_mib = 2048.0;
 };
 
 /// Checks a task for what it must not contain: non-finite numbers, radii <= 0, wrong
