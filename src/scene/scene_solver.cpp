@@ -209,6 +209,15 @@ bool measureGaps(const SceneTask& task, const SceneSolveOptions& options, int ro
   return !added.empty();
 }
 
+/// The smallest sigma of the report's relaxed NLPs that converged, or `fallback` when none did.
+double tightestRelaxation(const MpccReport& report, double fallback) {
+  double sigma = fallback;
+  for (const HomotopyStep& step : report.history) {
+    if (step.converged && step.sigma > 0.0) sigma = std::min(sigma, step.sigma);
+  }
+  return sigma;
+}
+
 }  // namespace
 
 bool solvedItsNlp(SolveStatus status) {
@@ -281,6 +290,11 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     OcpOptions ocp_options = options.ocp;
     ocp_options.homotopy.wall_time_budget =
         std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
+    if (round > 1) {
+      // The previous round's solution is nearly this round's (the new pairs start separated):
+      // its homotopy resumes at the tightest relaxation that round reached, not from guess_sigma.
+      ocp_options.guess_sigma = tightestRelaxation(outcome.report, ocp_options.guess_sigma);
+    }
     OcpSolver solver(ocp, ocp_options);
     solver.setMonitor(options.monitor);
     const NlpAssembly& nlp = solver.discretization().nlp();
