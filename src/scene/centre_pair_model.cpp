@@ -31,7 +31,8 @@ PairLayout layoutOf(const CentreEvaluator& evaluator, const CentrePair& pair) {
   const auto is_sphere = [](const CollisionCentre& c) {
     return c.source == CollisionCentre::Source::kRobotSphere;
   };
-  layout.curved = is_sphere(pair.a) || (pair.kind == CentrePair::Kind::kCentre && is_sphere(pair.b));
+  layout.curved =
+      is_sphere(pair.a) || (pair.kind == CentrePair::Kind::kCentre && is_sphere(pair.b));
   return layout;
 }
 
@@ -81,8 +82,7 @@ class LocalPair {
   }
 
  private:
-  void scatterColumns(const Eigen::Matrix3Xd& columns, const std::vector<int>& slots,
-                      double sign) {
+  void scatterColumns(const Eigen::Matrix3Xd& columns, const std::vector<int>& slots, double sign) {
     for (size_t c = 0; c < slots.size(); ++c) jacobian_.col(slots[c]) += sign * columns.col(c);
   }
 
@@ -117,8 +117,8 @@ class LocalPair {
     return result;
   }
 
-  static void scatterBlock(const Eigen::MatrixXd& block, const std::vector<int>& slots,
-                           double sign, Eigen::MatrixXd& into) {
+  static void scatterBlock(const Eigen::MatrixXd& block, const std::vector<int>& slots, double sign,
+                           Eigen::MatrixXd& into) {
     for (size_t r = 0; r < slots.size(); ++r) {
       for (size_t c = 0; c < slots.size(); ++c) into(slots[r], slots[c]) += sign * block(r, c);
     }

@@ -69,8 +69,7 @@ Eigen::MatrixXd CentreEvaluator::weightedHessian(const CollisionCentre& centre,
   if (centre.source == CollisionCentre::Source::kFreeBody) {
     return Eigen::MatrixXd::Zero(dimension_, dimension_);
   }
-  return chainBlock(centre.index,
-                    weightedSphereHessian(*robot_, data_, centre.index, inPlane(w)));
+  return chainBlock(centre.index, weightedSphereHessian(*robot_, data_, centre.index, inPlane(w)));
 }
 
 Eigen::MatrixXd CentreEvaluator::weightedThirdDerivative(const CollisionCentre& centre,

@@ -20,8 +20,8 @@ RobotForScene robotForScene(const std::string& urdf_xml, PlanarChoice choice,
                    "' moves the robot out of the (x, y) plane";
     return result;
   }
-  const bool planar = choice == PlanarChoice::kPlanar ||
-                      (choice == PlanarChoice::kInferred && leaving.empty());
+  const bool planar =
+      choice == PlanarChoice::kPlanar || (choice == PlanarChoice::kInferred && leaving.empty());
   result.dimension = planar ? 2 : 3;
   if (!planar) {
     result.robot = std::make_shared<const KinematicModel>(std::move(spatial.model));

@@ -62,7 +62,8 @@ Eigen::VectorXd interpolate(const std::vector<Eigen::VectorXd>& values, double h
 int pushingSphere(const RobotTask& task, int pushed_body) {
   const KinematicModel& robot = task.scene.robot();
   int tool_joint = -1;
-  for (const KinematicSphere& s : robot.spheres) tool_joint = std::max(tool_joint, robot.links[s.link].joint);
+  for (const KinematicSphere& s : robot.spheres)
+    tool_joint = std::max(tool_joint, robot.links[s.link].joint);
   const SceneBody& body = task.scene.discs().bodies().at(pushed_body);
   const BodyTask& t = task.bodies.at(pushed_body);
   Eigen::Vector3d direction = padded(t.target) - padded(body.position);
@@ -152,9 +153,8 @@ RobotGuess planRobotGuess(const RobotTask& task, const std::vector<RobotPair>& p
   const double step = horizon / task.num_intervals;
   for (int i = 0; i < task.num_intervals; ++i) {
     Eigen::VectorXd u = Eigen::VectorXd::Zero(scene.controlSize());
-    const Eigen::VectorXd motion =
-        result.boundary_joints[(i + 1) * elements_per_interval] -
-        result.boundary_joints[i * elements_per_interval];
+    const Eigen::VectorXd motion = result.boundary_joints[(i + 1) * elements_per_interval] -
+                                   result.boundary_joints[i * elements_per_interval];
     for (int j = 0; j < nq; ++j) {
       const double limit = jointSpeedLimit(task, j);
       u(j) = std::clamp(motion(j) / step, -limit, limit);

@@ -130,10 +130,10 @@ double RobotScene::constraintValue(const RobotPair& pair, const Eigen::VectorXd&
 double RobotScene::pairGap(const RobotPair& pair, const Eigen::VectorXd& x) const {
   const double c = constraintValue(pair, x);
   if (pair.kind == RobotPair::Kind::kWall) return c;
-  const double radii = collision_bodies_[pair.body].radius +
-                       (pair.kind == RobotPair::Kind::kBody
-                            ? collision_bodies_[pair.other].radius
-                            : discs_.obstacles()[pair.other].radius);
+  const double radii =
+      collision_bodies_[pair.body].radius + (pair.kind == RobotPair::Kind::kBody
+                                                 ? collision_bodies_[pair.other].radius
+                                                 : discs_.obstacles()[pair.other].radius);
   return std::sqrt(std::max(0.0, c + radii * radii)) - radii;
 }
 

@@ -34,8 +34,8 @@ void judgeTargets(const RobotTask& task, RobotOutcome& outcome) {
     const int first = scene.bodyStateIndex(static_cast<int>(b));
     outcome.target_distances[b] = (end.segment(first, scene.dimension()) - t.target).norm();
     if (outcome.target_distances[b] > targetTolerance(t.target_weight)) {
-      missed << (missed.tellp() > 0 ? "; " : "") << "body '" << discs.bodies()[b].name
-             << "' ends " << outcome.target_distances[b] << " from its target";
+      missed << (missed.tellp() > 0 ? "; " : "") << "body '" << discs.bodies()[b].name << "' ends "
+             << outcome.target_distances[b] << " from its target";
     }
   }
   if (outcome.status == SolveStatus::kSuccess && missed.tellp() > 0) {

@@ -50,8 +50,8 @@ double controlNorm(const RobotTask& task) {
 double separationBound(const RobotTask& task, const RobotPair& pair,
                        const std::vector<double>& reach) {
   const RobotScene& scene = task.scene;
-  if (pair.kind == RobotPair::Kind::kWall) return scene.pairGap(pair, scene.initialState()) -
-                                                  reach[pair.body];
+  if (pair.kind == RobotPair::Kind::kWall)
+    return scene.pairGap(pair, scene.initialState()) - reach[pair.body];
   const double other_reach = pair.kind == RobotPair::Kind::kBody ? reach[pair.other] : 0.0;
   return scene.pairGap(pair, scene.initialState()) - reach[pair.body] - other_reach;
 }
@@ -193,8 +193,8 @@ std::vector<double> collisionReach(const RobotTask& task) {
     grew = false;
     for (const RobotPair& pair : scene.allPairs()) {
       if (pair.kind != RobotPair::Kind::kBody) continue;
-      for (const auto& [mover, still] : {std::make_pair(pair.body, pair.other),
-                                        std::make_pair(pair.other, pair.body)}) {
+      for (const auto& [mover, still] :
+           {std::make_pair(pair.body, pair.other), std::make_pair(pair.other, pair.body)}) {
         if (reach[mover] == 0.0 || reach[still] > 0.0 || bodies[still].sphere >= 0) continue;
         if (scene.pairGap(pair, x0) - reach[mover] > 0.0) continue;
         reach[still] = travel;

@@ -32,7 +32,8 @@ fesd::CentrePairSystem mixedSystem(const std::string& robot_file, int dimension)
   const CollisionCentre body1{CollisionCentre::Source::kFreeBody, nq + dimension};
   const CollisionCentre tip{CollisionCentre::Source::kRobotSphere, spheres - 1};
   const CollisionCentre middle{CollisionCentre::Source::kRobotSphere, spheres / 2};
-  const Eigen::Vector3d normal = Eigen::Vector3d(0.3, -0.5, dimension == 3 ? 0.8 : 0.0).normalized();
+  const Eigen::Vector3d normal =
+      Eigen::Vector3d(0.3, -0.5, dimension == 3 ? 0.8 : 0.0).normalized();
   system.pairs = {
       {CentrePair::Kind::kCentre, tip, body1, Eigen::Vector3d::Zero(), 0.01},
       {CentrePair::Kind::kCentre, middle, tip, Eigen::Vector3d::Zero(), 0.02},
@@ -45,8 +46,7 @@ fesd::CentrePairSystem mixedSystem(const std::string& robot_file, int dimension)
   return system;
 }
 
-class CentrePairDerivatives
-    : public ::testing::TestWithParam<std::pair<const char*, int>> {};
+class CentrePairDerivatives : public ::testing::TestWithParam<std::pair<const char*, int>> {};
 
 TEST_P(CentrePairDerivatives, VelocityAndConstraintsAgainstFiniteDifferences) {
   const fesd::CentrePairSystem system = mixedSystem(GetParam().first, GetParam().second);

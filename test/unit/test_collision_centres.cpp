@@ -30,10 +30,11 @@ TEST(CollisionCentres, RobotSphereDerivativesAgainstFiniteDifferences) {
   const int nq = robot->numCoordinates();
   std::mt19937 random(5);
   CentreEvaluator evaluator(robot, 3);
-  for (int sphere : {3, 20, static_cast<int>(robot->spheres.size()) - 1}) {
+  // Spheres on the third link and below, off their joints' axes: every derivative is nonzero.
+  for (int sphere : {20, 40, static_cast<int>(robot->spheres.size()) - 1}) {
     const CollisionCentre centre{CollisionCentre::Source::kRobotSphere, sphere};
     const std::vector<int> variables = evaluator.variables(centre);
-    ASSERT_FALSE(variables.empty());
+    ASSERT_GE(variables.size(), 3u) << robot->spheres[sphere].name;
     Eigen::VectorXd x = randomState(nq, random);
     const Eigen::Vector3d w = fesd_test::randomVector(3, random);
     const Eigen::VectorXd v = fesd_test::randomVector(static_cast<int>(variables.size()), random);
@@ -73,7 +74,7 @@ TEST(CollisionCentres, RobotSphereDerivativesAgainstFiniteDifferences) {
     // H[w] v is T[w, e_k] v, which equals T[w, v] e_k.
     const Eigen::MatrixXd third = evaluator.weightedThirdDerivative(centre, w, v);
     EXPECT_LT((third - fesd_test::finiteDifferenceJacobian(hessian_along_v, local)).norm(), 1e-7);
-    EXPECT_GT(third.norm(), 1e-3);  // the test has something to compare
+    EXPECT_GT(third.norm(), 1e-3) << robot->spheres[sphere].name;  // something to compare
   }
 }
 

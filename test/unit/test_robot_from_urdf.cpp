@@ -23,8 +23,8 @@ TEST(RobotFromUrdf, PlanarityIsInferred) {
 }
 
 TEST(RobotFromUrdf, ForcingPlanarOnASpatialRobotNamesTheJoint) {
-  const fesd::RobotForScene panda = fesd::robotForScene(
-      fesd_test::readRobotFile("panda_spherized.urdf"), PlanarChoice::kPlanar);
+  const fesd::RobotForScene panda =
+      fesd::robotForScene(fesd_test::readRobotFile("panda_spherized.urdf"), PlanarChoice::kPlanar);
   EXPECT_EQ(panda.robot, nullptr);
   EXPECT_EQ(panda.error,
             "the scene cannot be planar: joint 'panda_joint2' moves the robot out of the (x, y) "

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "fesd_trajopt/integrator/fesd_integrator.h"
+#include "fesd_trajopt/kinematics/srdf.h"
 #include "fesd_trajopt/scene/robot_scene.h"
 #include "support/robot_files.h"
 
@@ -116,8 +117,8 @@ TEST(RobotScene, ShoulderTurningAtConstantSpeedMeetsThePostAtTheComputedTime) {
   options.discretization.num_elements = 3;
   fesd::FesdIntegrator integrator(scene.model(pairs), options);
   const double horizon = 2.0;
-  const fesd::SimulationResult result = integrator.simulate(
-      scene.initialState(), horizon, 4, {Eigen::Vector3d(omega, 0.0, 0.0)});
+  const fesd::SimulationResult result =
+      integrator.simulate(scene.initialState(), horizon, 4, {Eigen::Vector3d(omega, 0.0, 0.0)});
   ASSERT_EQ(result.status, fesd::SolveStatus::kSuccess) << result.message;
   const double contact_angle = phi - 2.0 * std::asin(radii / (2.0 * radius));
   const double expected_time = contact_angle / omega;
@@ -135,6 +136,41 @@ TEST(RobotScene, ShoulderTurningAtConstantSpeedMeetsThePostAtTheComputedTime) {
   // Afterwards the arm stays out of the post at every element boundary.
   for (const Eigen::VectorXd& x : result.trajectory.states) {
     EXPECT_GT(scene.pairGap(pairs[tip_pair], x), -1e-8);
+  }
+}
+
+}  // namespace
+
+namespace {
+
+TEST(RobotScene, SrdfDisabledPairsLeaveSelfCollisionOfThePanda) {
+  fesd::DiscScene discs(3);
+  const Eigen::VectorXd ready =
+      (Eigen::VectorXd(7) << 0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785).finished();
+  RobotScene scene(shipped("panda_spherized.urdf"), ready, discs);
+  EXPECT_TRUE(pairNames(scene).empty());  // nothing else in the scene, no self-collision
+  scene.self_collision = true;
+  const size_t all_self = scene.allPairs().size();
+  EXPECT_GT(all_self, 0u);
+  const fesd::SrdfDisabledCollisions srdf =
+      fesd::disabledCollisionsFromSrdf(fesd_test::readRobotFile("panda.srdf"));
+  ASSERT_EQ(srdf.error, "");
+  scene.disabled_link_pairs = srdf.pairs;
+  const std::vector<RobotPair> kept = scene.allPairs();
+  EXPECT_LT(kept.size(), all_self);
+  const Eigen::VectorXd x0 = scene.initialState();
+  for (const RobotPair& pair : kept) {
+    const auto link = [&](int body) {
+      return scene.robot()
+          .links[scene.robot().spheres[scene.collisionBodies()[body].sphere].link]
+          .name;
+    };
+    for (const auto& [a, b] : srdf.pairs) {
+      EXPECT_FALSE((link(pair.body) == a && link(pair.other) == b) ||
+                   (link(pair.body) == b && link(pair.other) == a))
+          << scene.pairName(pair);
+    }
+    EXPECT_GE(scene.pairGap(pair, x0), 0.0) << scene.pairName(pair);
   }
 }
 

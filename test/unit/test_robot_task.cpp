@@ -14,7 +14,7 @@ using fesd::RobotTask;
 RobotTask armTask() {
   fesd::DiscScene discs(2);
   discs.bodies().push_back({"disc", 0.05, Eigen::Vector2d(0.6, 0.3), false});
-  discs.obstacles().push_back({"far_post", 0.1, Eigen::Vector2d(5.0, 0.0)});
+  discs.obstacles().push_back({"far_post", 0.1, Eigen::Vector2d(10.0, 0.0)});
   discs.obstacles().push_back({"near_post", 0.1, Eigen::Vector2d(0.0, 0.5)});
   RobotTask task(fesd::RobotScene(
       std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf")),
@@ -55,7 +55,8 @@ TEST(RobotTask, ValidationNamesTheProblem) {
             "joint 'shoulder': the velocity bound must be finite and >= 0");
   fesd::DiscScene overlapping(2);
   overlapping.bodies().push_back({"disc", 0.05, Eigen::Vector2d(0.9, 0.0), false});
-  RobotTask touching(fesd::RobotScene(task.scene.robotPointer(), Eigen::Vector3d::Zero(), overlapping));
+  RobotTask touching(
+      fesd::RobotScene(task.scene.robotPointer(), Eigen::Vector3d::Zero(), overlapping));
   EXPECT_EQ(fesd::validateRobotTask(touching, limits), "disc/hand/sphere_1 overlap at the start");
 }
 
@@ -72,7 +73,9 @@ TEST(RobotTask, PairsBeyondReachArePruned) {
       near_seen = true;
       EXPECT_TRUE(d.modelled) << d.reason;
     }
-    if (name == "disc/far_post") EXPECT_FALSE(d.modelled) << d.reason;
+    if (name == "disc/far_post") {
+      EXPECT_FALSE(d.modelled) << d.reason;
+    }
   }
   EXPECT_TRUE(far_seen);
   EXPECT_TRUE(near_seen);
