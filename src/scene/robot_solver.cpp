@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include "fesd_trajopt/scene/robot_guess.h"
+#include "fesd_trajopt/scene/robot_lazy_pairs.h"
+#include "fesd_trajopt/solver/stopwatch.h"
 
 namespace fesd {
 namespace {
@@ -61,19 +63,68 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
   outcome.invalid = validateRobotTask(task, limits);
   if (!outcome.invalid.empty()) return outcome;
   outcome.decisions = decideRobotPairs(task);
+  std::vector<RobotPair> candidates;
   for (const RobotPairDecision& decision : outcome.decisions) {
-    if (decision.modelled) outcome.modelled.push_back(decision.pair);
+    if (decision.modelled) candidates.push_back(decision.pair);
   }
-  const RobotGuess guess =
-      planRobotGuess(task, outcome.modelled, options.ocp.discretization.num_elements);
+  const int elements = options.ocp.discretization.num_elements;
+  const RobotGuess guess = planRobotGuess(task, candidates, elements);
   outcome.pusher_sphere = guess.pusher_sphere;
-  const OcpDefinition ocp = buildRobotOcp(task, outcome.modelled);
-  OcpSolver solver(ocp, options.ocp);
-  const OcpSolution solution = solver.solve(guess.guess);
-  outcome.status = solution.status;
-  outcome.message = solution.message;
-  outcome.trajectory = solution.trajectory;
-  outcome.report = solution.report;
+  if (options.lazy_pairs) {
+    const std::vector<bool> needed = robotPairsTheGuessNeeds(
+        task, candidates, guess.guess, options.pair_margin, 16 * task.num_intervals);
+    size_t k = 0;
+    for (RobotPairDecision& decision : outcome.decisions) {
+      if (!decision.modelled) continue;
+      decision.modelled = needed[k];
+      decision.checked = !needed[k];
+      decision.reason = needed[k] ? "called for by the first guess" : "checked on the solution";
+      ++k;
+    }
+  }
+  Stopwatch stopwatch;
+  Trajectory previous_round;
+  std::vector<RobotPair> previous_pairs;
+  for (int round = 1;; ++round) {
+    outcome.modelled.clear();
+    for (const RobotPairDecision& decision : outcome.decisions) {
+      if (decision.modelled) outcome.modelled.push_back(decision.pair);
+    }
+    const OcpDefinition ocp = buildRobotOcp(task, outcome.modelled);
+    OcpOptions ocp_options = options.ocp;
+    ocp_options.homotopy.wall_time_budget =
+        std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
+    OcpSolver solver(ocp, ocp_options);
+    // The guess's multipliers belong to the candidates; the NLP's to the modelled pairs.
+    TrajectoryGuess round_guess = planRobotGuess(task, outcome.modelled, elements).guess;
+    OcpSolution solution =
+        round == 1
+            ? solver.solve(round_guess)
+            : solver.solve(trajectoryForPairs(previous_round, previous_pairs, outcome.modelled),
+                           round_guess);
+    if (round > 1) solution.report.addEffort(outcome.report);
+    outcome.status = solution.status;
+    outcome.message = solution.message;
+    outcome.trajectory = solution.trajectory;
+    outcome.report = solution.report;
+    outcome.pair_rounds = round;
+    if (outcome.trajectory.states.empty() || outcome.status != SolveStatus::kSuccess) break;
+    previous_round = outcome.trajectory;
+    previous_pairs = outcome.modelled;
+    // Checked pairs that came within the margin along the solution are modelled next round.
+    const std::vector<Eigen::VectorXd> path = densePath(outcome.trajectory);
+    bool added = false;
+    for (RobotPairDecision& decision : outcome.decisions) {
+      if (!decision.checked) continue;
+      const double gap = smallestPathGaps(task.scene, {decision.pair}, path)[0];
+      if (gap >= options.pair_margin * robotPairSize(task.scene, decision.pair)) continue;
+      decision.modelled = true;
+      decision.checked = false;
+      decision.reason = "modelled from round " + std::to_string(round + 1);
+      added = true;
+    }
+    if (!added) break;
+  }
   if (outcome.trajectory.states.empty()) return outcome;
   outcome.boundary_gap = smallestBoundaryGap(task.scene, outcome.modelled, outcome.trajectory);
   judgeTargets(task, outcome);
@@ -84,12 +135,14 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
     fine.discretization.num_stages = std::max(fine.discretization.num_stages, solved.num_stages);
     fine.discretization.num_elements =
         std::max(fine.discretization.num_elements, 2 * solved.num_elements);
-    const SimulationResult result = resimulate(ocp, outcome.trajectory.controls, fine);
+    fine.wall_time_budget =
+        std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
+    const SimulationResult result =
+        resimulate(buildRobotOcp(task, outcome.modelled), outcome.trajectory.controls, fine);
     if (result.status == SolveStatus::kSuccess) {
       outcome.verification_error =
           (result.trajectory.finalState() - outcome.trajectory.finalState()).norm();
-      outcome.verification_gap =
-          smallestBoundaryGap(task.scene, outcome.modelled, result.trajectory);
+      outcome.verification_gap = smallestBoundaryGap(task.scene, candidates, result.trajectory);
     } else {
       outcome.verification_error = std::numeric_limits<double>::infinity();
     }

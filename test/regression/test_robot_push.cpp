@@ -13,11 +13,16 @@
 
 namespace {
 
-TEST(RobotPush, PlanarArmPushesTheDiscToItsTarget) {
+class RobotPush : public ::testing::TestWithParam<bool> {};
+
+// Lazy pairs (true) and every pair in reach (false) both succeed.
+TEST_P(RobotPush, PlanarArmPushesTheDiscToItsTarget) {
   const fesd::RobotTask task = fesd::planarArmPushTask(
       std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf")));
   const auto start = std::chrono::steady_clock::now();
-  const fesd::RobotOutcome outcome = fesd::solveRobotTask(task, {}, {});
+  fesd::RobotSolveOptions options;
+  options.lazy_pairs = GetParam();
+  const fesd::RobotOutcome outcome = fesd::solveRobotTask(task, {}, options);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(outcome.invalid, "");
@@ -37,5 +42,7 @@ TEST(RobotPush, PlanarArmPushesTheDiscToItsTarget) {
       outcome.target_distances[0], outcome.boundary_gap, outcome.verification_error,
       outcome.verification_gap, task.scene.robot().spheres[outcome.pusher_sphere].name.c_str());
 }
+
+INSTANTIATE_TEST_SUITE_P(LazyAndAll, RobotPush, ::testing::Bool());
 
 }  // namespace

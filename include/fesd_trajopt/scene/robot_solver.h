@@ -12,8 +12,14 @@ namespace fesd {
 
 struct RobotSolveOptions {
   OcpOptions ocp;
+  /// Lazy pairs, as for discs: model first the pairs in reach that the first guess calls for
+  /// (robotPairsTheGuessNeeds), check the others on the solution's dense path, add those within
+  /// the margin and solve again from that solution until none is. false: all pairs in reach.
+  bool lazy_pairs = true;
+  double pair_margin = 0.1;  ///< relative to robotPairSize
   /// Re-simulate the optimal controls on a finer grid (at least the solve's stages, twice its
-  /// elements) with the same pairs and report the end state's deviation and the smallest gap.
+  /// elements) with the modelled pairs and report the end state's deviation and the smallest
+  /// gap of every pair in reach.
   bool verify = true;
   DiscretizationOptions verification;
 };
@@ -23,7 +29,8 @@ struct RobotSolveOptions {
 struct RobotOutcome {
   std::string invalid;
   std::vector<RobotPairDecision> decisions;
-  std::vector<RobotPair> modelled;  ///< the NLP's constraints, in order
+  std::vector<RobotPair> modelled;  ///< the last NLP's constraints, in order
+  int pair_rounds = 0;              ///< solves with a growing set of modelled pairs
   int pusher_sphere = -1;
   SolveStatus status = SolveStatus::kSolverError;
   std::string message;
@@ -32,7 +39,7 @@ struct RobotOutcome {
   /// The smallest gap of the modelled pairs at the element boundaries (negative: penetration).
   double boundary_gap = std::numeric_limits<double>::quiet_NaN();
   double verification_error = std::numeric_limits<double>::quiet_NaN();
-  /// The smallest gap of the modelled pairs at the verification's element boundaries.
+  /// The smallest gap of every pair in reach at the verification's element boundaries.
   double verification_gap = std::numeric_limits<double>::quiet_NaN();
   /// Per free body: its end position's distance from its target (NaN without one).
   std::vector<double> target_distances;
@@ -40,8 +47,9 @@ struct RobotOutcome {
   std::vector<double> joint_target_distances;
 };
 
-/// validateRobotTask, decideRobotPairs (every pair in reach is modelled), planRobotGuess, one
-/// OcpSolver solve from the guess, the targets judged (a success that misses a weighted target by
+/// validateRobotTask, decideRobotPairs, planRobotGuess, rounds of OcpSolver solves over the
+/// modelled pairs (lazy pairs: the first from the guess, each later one from the round before),
+/// the targets judged (a success that misses a weighted target by
 /// more than targetTolerance is kTargetNotReached) and, on request, the verification.
 RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
                             const RobotSolveOptions& options);

@@ -57,6 +57,8 @@ struct RobotPairDecision {
   RobotPair pair;
   bool modelled;
   std::string reason;
+  /// In reach but not modelled: checked on the solution instead (lazy pairs, solveRobotTask).
+  bool checked = false;
 };
 
 /// How far each collision body can get from its start within the horizon. The projected velocity
