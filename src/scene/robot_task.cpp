@@ -89,6 +89,10 @@ std::string validateRobotTask(const RobotTask& task, const TaskLimits& limits) {
   if (static_cast<int>(discs.walls().size()) > limits.max_walls) {
     return "too many walls (limit " + std::to_string(limits.max_walls) + ")";
   }
+  if (!scene.robot().free_links.empty()) {
+    return "link '" + scene.robot().free_links.front().link +
+           "' is on a planar or floating joint: robots with free links are not supported yet";
+  }
   if (static_cast<int>(task.joints.size()) != scene.numJoints()) {
     return "one joint task per robot coordinate is needed";
   }

@@ -102,3 +102,26 @@ TEST(RobotTask, OcpBoundsAndCosts) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(RobotTask, RobotsWithFreeLinksAreRefused) {
+  const fesd::KinematicModelResult built = fesd::buildKinematicModel(R"(<robot name="slider">
+    <link name="base"/>
+    <link name="arm"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
+    <link name="puck"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
+    <joint name="hinge" type="revolute"><parent link="base"/><child link="arm"/>
+      <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+    <joint name="free" type="planar"><parent link="base"/><child link="puck"/>
+      <origin xyz="1 0 0"/></joint>
+  </robot>)");
+  ASSERT_EQ(built.error, "");
+  const fesd::RobotTask task(
+      fesd::RobotScene(std::make_shared<const fesd::KinematicModel>(built.model),
+                       Eigen::VectorXd::Zero(1), fesd::DiscScene(2)));
+  EXPECT_EQ(fesd::validateRobotTask(task, {}),
+            "link 'puck' is on a planar or floating joint: robots with free links are not "
+            "supported yet");
+}
+
+}  // namespace
