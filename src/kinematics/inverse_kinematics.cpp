@@ -18,6 +18,26 @@ Eigen::VectorXd dampedStep(const Eigen::Matrix3Xd& jacobian, const Eigen::Vector
   return step;
 }
 
+/// The damped step with the joints that sit at a limit and would be pushed past it held still:
+/// clamping the step afterwards would waste the part of the motion meant for them.
+Eigen::VectorXd stepWithinLimits(const KinematicModel& model, const Eigen::VectorXd& q,
+                                 Eigen::Matrix3Xd jacobian, const Eigen::Vector3d& error,
+                                 double damping) {
+  for (;;) {
+    const Eigen::VectorXd step = dampedStep(jacobian, error, damping);
+    bool locked = false;
+    for (int j = 0; j < model.numCoordinates(); ++j) {
+      const bool outwards = (q(j) <= model.joints[j].lower && step(j) < 0.0) ||
+                            (q(j) >= model.joints[j].upper && step(j) > 0.0);
+      if (outwards) {
+        jacobian.col(j).setZero();  // its step is then exactly 0
+        locked = true;
+      }
+    }
+    if (!locked) return step;
+  }
+}
+
 Eigen::VectorXd clampToLimits(const KinematicModel& model, Eigen::VectorXd q) {
   for (int j = 0; j < model.numCoordinates(); ++j) {
     q(j) = std::clamp(q(j), model.joints[j].lower, model.joints[j].upper);
@@ -46,7 +66,7 @@ InverseKinematicsResult sphereInverseKinematics(const KinematicModel& model, int
     const Eigen::Vector3d error = target - data.sphere_centres[sphere];
     bool progressed = false;
     for (int increase = 0; increase <= kDampingIncreases && !progressed; ++increase) {
-      Eigen::VectorXd step = dampedStep(jacobian, error, damping);
+      Eigen::VectorXd step = stepWithinLimits(model, result.q, jacobian, error, damping);
       const double largest = step.lpNorm<Eigen::Infinity>();
       if (largest > options.max_step) step *= options.max_step / largest;
       const Eigen::VectorXd candidate = clampToLimits(model, result.q + step);

@@ -100,7 +100,7 @@ class ModelBuilder {
                  std::abs((pending.zero_pose * local).linear()(2, 2)) > 1.0 - 1e-9) {
         radius = static_cast<const urdf::Cylinder&>(*collision.geometry).radius;
       }
-      if (radius <= 0.0) {
+      if (!(radius > 0.0)) {
         model_.ignored_shapes.push_back(prefix + "collision_" + std::to_string(k) + " (" +
                                         shapeName(collision.geometry->type) + ")");
         continue;
@@ -166,6 +166,10 @@ class ModelBuilder {
     coordinate.lower = bounded ? joint.limits->lower : -infinity;
     coordinate.upper = bounded ? joint.limits->upper : infinity;
     coordinate.max_velocity = joint.limits ? joint.limits->velocity : 0.0;
+    if (!(coordinate.lower <= coordinate.upper) || !(coordinate.max_velocity >= 0.0)) {
+      error_ = "joint " + joint.name + " has limits out of order or a negative velocity limit";
+      return;
+    }
     model_.joints.push_back(std::move(coordinate));
     children.push_back({child, index, Eigen::Isometry3d::Identity(), parent.zero_pose * origin});
   }

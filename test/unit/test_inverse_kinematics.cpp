@@ -1,8 +1,8 @@
 // Damped least-squares inverse kinematics for one sphere centre
 // (kinematics/inverse_kinematics.cpp): reachable targets met to 1e-8 on the planar arm and the
-// Panda, an unreachable one ends cleanly at the closest stretch within the limits, and the
-// result is bitwise repeatable.
-#include <random>
+// Panda, unreachable ones end cleanly at the closest point (stretched out, or against a joint
+// limit), and the result is bitwise repeatable.
+#include <cmath>
 
 #include <gtest/gtest.h>
 
@@ -49,7 +49,7 @@ TEST(InverseKinematics, ReachablePointsAreMetOnThePlanarArmAndThePanda) {
   EXPECT_TRUE(withinLimits(panda, panda_result.q));
 }
 
-TEST(InverseKinematics, AnUnreachablePointEndsCleanlyAtTheFullStretchAndRepeatsBitwise) {
+TEST(InverseKinematics, UnreachablePointsEndCleanlyAtTheClosestPointAndRepeatBitwise) {
   const fesd::KinematicModel arm = fesd_test::loadShippedRobot("planar_arm.urdf");
   const int tip = arm.sphereIndex("hand/sphere_1");
   const Eigen::Vector3d far(2.0, 1.0, 0.0);  // the tip reaches 0.4 + 0.3 + 0.2 = 0.9 m
@@ -66,10 +66,16 @@ TEST(InverseKinematics, AnUnreachablePointEndsCleanlyAtTheFullStretchAndRepeatsB
   EXPECT_EQ(again.iterations, result.iterations);
   EXPECT_TRUE((again.q.array() == result.q.array()).all());
 
-  // Behind the base, beyond the shoulder's limit of 2.8 rad: the best within the limits.
+  // Behind the base, past the shoulder's limit of -2.8 rad: the shoulder stops at its limit and
+  // the rest of the arm (0.5 m) stretches from the elbow towards the target.
   const Eigen::Vector3d behind(-0.9, -0.05, 0.0);
   const fesd::InverseKinematicsResult limited =
       fesd::sphereInverseKinematics(arm, tip, behind, Eigen::Vector3d::Zero(), options);
+  const Eigen::Vector3d elbow(0.4 * std::cos(-2.8), 0.4 * std::sin(-2.8), 0.0);
+  EXPECT_FALSE(limited.reached);
+  EXPECT_LT(limited.iterations, options.max_iterations);
+  EXPECT_EQ(limited.q(0), -2.8);
+  EXPECT_NEAR(limited.distance, (behind - elbow).norm() - 0.5, 1e-6);
   EXPECT_TRUE(withinLimits(arm, limited.q));
 }
 

@@ -70,7 +70,7 @@ TEST(KinematicModel, PandaHasSevenRevoluteJointsAndFiftyNineSpheres) {
   EXPECT_EQ(panda.chainOf(finger).size(), 7u);
 }
 
-TEST(KinematicModel, AxesAreNormalisedAndContinuousJointsUnbounded) {
+TEST(KinematicModel, AxesAreNormalisedContinuousJointsUnboundedAndBadJointsRefused) {
   const fesd::KinematicModelResult mixed = fesd::buildKinematicModel(fesd_test::mixedJointsUrdf());
   ASSERT_EQ(mixed.error, "");
   const fesd::KinematicModel& model = mixed.model;
@@ -93,6 +93,11 @@ TEST(KinematicModel, AxesAreNormalisedAndContinuousJointsUnbounded) {
     <joint name="bad" type="continuous"><parent link="a"/><child link="b"/>
       <axis xyz="0 0 0"/></joint></robot>)";
   EXPECT_EQ(fesd::buildKinematicModel(zero_axis).error, "joint bad has a zero axis");
+  const std::string reversed_limits = R"(<robot name="r"><link name="a"/><link name="b"/>
+    <joint name="bad" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
+      <limit lower="1" upper="-1" effort="1" velocity="1"/></joint></robot>)";
+  EXPECT_EQ(fesd::buildKinematicModel(reversed_limits).error,
+            "joint bad has limits out of order or a negative velocity limit");
   EXPECT_NE(fesd::buildKinematicModel("<robot name='x'><link name=").error.find("malformed"),
             std::string::npos);
 }

@@ -23,9 +23,10 @@ struct InverseKinematicsResult {
 };
 
 /// Moves one sphere's centre towards a target by damped least squares from q0, clamping every
-/// step at the joint limits; a step that does not get closer is retried with more damping, and
-/// when none does (a stall: the target is out of reach or the limits stop the way) it ends.
-/// Deterministic arithmetic: only fixed-size 3 x 3 solves, no BLAS.
+/// step at the joint limits (a joint at a limit that the step would push past is held still); a
+/// step that does not get closer is retried with more damping, and when none does (a stall: the
+/// target is out of reach or the limits stop the way) it ends. Deterministic arithmetic: only
+/// fixed-size 3 x 3 solves, no BLAS.
 InverseKinematicsResult sphereInverseKinematics(const KinematicModel& model, int sphere,
                                                 const Eigen::Vector3d& target,
                                                 const Eigen::VectorXd& q0,
