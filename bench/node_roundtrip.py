@@ -64,10 +64,17 @@ def disc_in_the_way():
     return request
 
 
+def disc_in_the_way_to_1e_2():
+    """disc_in_the_way with target_accuracy 1e-2: the ladder refines until the plan verifies."""
+    request = disc_in_the_way()
+    request.target_accuracy = 1e-2
+    return request
+
+
 CASES = {"default": default_scene, "far_body": far_body,
          "ten_discs_out_of_reach": ten_discs_out_of_reach, "ten_discs_in_reach": ten_discs_in_reach,
          "ten_discs_in_reach_all_pairs": ten_discs_in_reach_all_pairs,
-         "disc_in_the_way": disc_in_the_way}
+         "disc_in_the_way": disc_in_the_way, "disc_in_the_way_to_1e-2": disc_in_the_way_to_1e_2}
 
 
 def node_memory_mib():

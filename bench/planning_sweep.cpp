@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.h"
 #include "commands.h"
 #include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/examples/planning_scenes.h"
@@ -36,6 +37,7 @@ int planningSweep(const Arguments& args) {
   options.ocp.homotopy.wall_time_budget = args.number("budget", 120.0);
   options.lazy_pairs = pairs == "lazy";
   options.pair_margin = args.number("margin", 0.1);
+  applyHomotopyArguments(args, options.ocp.homotopy);
   fesd::SimulationOptions fine;
   fine.discretization.num_stages = std::max(3, options.ocp.discretization.num_stages);
   fine.discretization.num_elements = 2 * options.ocp.discretization.num_elements;
@@ -55,7 +57,7 @@ int planningSweep(const Arguments& args) {
                 showcase_seconds);
   }
   std::printf(
-      "family,seed,bodies,obstacles,reachable,pairs,status,wall_s,ipopt_iterations,"
+      "family,seed,bodies,obstacles,reachable,pairs,status,wall_s,ipopt_iterations,objective,"
       "homotopy_steps,pairs_in_reach,modelled,checked,rounds,target_distance,plan_gap,"
       "verification_status,verification_error,verification_gap,verification_s,description\n");
   std::vector<double> walls;
@@ -71,15 +73,18 @@ int planningSweep(const Arguments& args) {
       missed += ok && run.target_distance > 1e-3;
       penetrating += run.plan_gap < -1e-6 || run.verification_gap < -1e-6;
       walls.push_back(run.wall_seconds);
-      std::printf("%s,%u,%zu,%zu,%d,%s,%s,%.3f,%d,%zu,%d,%d,%d,%d,%.3g,%.3g,%s,%.3g,%.3g,%.3f,%s\n",
-                  family.c_str(), scene.seed, scene.task.scene.bodies().size(),
-                  scene.task.scene.obstacles().size(), scene.reachable, pairs.c_str(),
-                  outcome.solved() ? fesd::statusName(outcome.status).c_str() : "refused",
-                  run.wall_seconds, outcome.report.iterations, outcome.report.history.size(),
-                  outcome.modelledPairs() + outcome.checkedPairs(), outcome.modelledPairs(),
-                  outcome.checkedPairs(), outcome.pair_rounds, run.target_distance, run.plan_gap,
-                  fesd::statusName(run.verification.status).c_str(), run.verification.error,
-                  run.verification_gap, run.verification_seconds, scene.description.c_str());
+      std::printf(
+          "%s,%u,%zu,%zu,%d,%s,%s,%.3f,%d,%.10g,%zu,%d,%d,%d,%d,%.3g,%.3g,%s,%.3g,%.3g,%.3f,%s\n",
+          family.c_str(), scene.seed, scene.task.scene.bodies().size(),
+          scene.task.scene.obstacles().size(), scene.reachable, pairs.c_str(),
+          outcome.solved() ? fesd::statusName(outcome.status).c_str() : "refused", run.wall_seconds,
+          outcome.report.iterations, outcome.report.objective, outcome.report.history.size(),
+          outcome.modelledPairs() + outcome.checkedPairs(), outcome.modelledPairs(),
+          outcome.checkedPairs(), outcome.pair_rounds, run.target_distance, run.plan_gap,
+          fesd::statusName(run.verification.status).c_str(), run.verification.error,
+          run.verification_gap, run.verification_seconds, scene.description.c_str());
+      if (!ok)
+        std::fprintf(stderr, "# %s %u: %s\n", family.c_str(), scene.seed, outcome.message.c_str());
       std::fflush(stdout);
     }
   }

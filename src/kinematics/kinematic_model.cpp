@@ -8,18 +8,10 @@
 
 #include <urdf_parser/urdf_parser.h>
 
+#include "fesd_trajopt/kinematics/urdf_pose.h"
+
 namespace fesd {
 namespace {
-
-Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.translation() << pose.position.x, pose.position.y, pose.position.z;
-  t.linear() =
-      Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
-          .normalized()
-          .toRotationMatrix();
-  return t;
-}
 
 const char* shapeName(int type) {
   switch (type) {
@@ -92,7 +84,7 @@ class ModelBuilder {
     for (std::size_t k = 0; k < collisions.size(); ++k) {
       const urdf::Collision& collision = *collisions[k];
       if (!collision.geometry) continue;
-      const Eigen::Isometry3d local = toIsometry(collision.origin);
+      const Eigen::Isometry3d local = isometryFromUrdf(collision.origin);
       double radius = 0.0;
       if (collision.geometry->type == urdf::Geometry::SPHERE) {
         radius = static_cast<const urdf::Sphere&>(*collision.geometry).radius;
@@ -121,7 +113,7 @@ class ModelBuilder {
                    std::vector<PendingLink>& children) {
     const urdf::LinkConstSharedPtr child = urdf_.getLink(joint.child_link_name);
     if (!child) return;
-    const Eigen::Isometry3d origin = toIsometry(joint.parent_to_joint_origin_transform);
+    const Eigen::Isometry3d origin = isometryFromUrdf(joint.parent_to_joint_origin_transform);
     switch (joint.type) {
       case urdf::Joint::FIXED:
         children.push_back(

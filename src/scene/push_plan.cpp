@@ -21,6 +21,11 @@ constexpr double kStepFraction = 0.05;
 constexpr int kProjectionSweeps = 4;
 /// Velocities of the plan are differences over this fraction of the horizon.
 constexpr double kVelocityStep = 1e-7;
+/// A push end is out of the pushers' reach when they can produce less than 90 % of the
+/// displacement to it (by magnitude: the residual of their nonnegative combination).
+constexpr double kUnpushableFraction = 0.1;
+/// Rings searched around an unreachable target, out to the push's length.
+constexpr int kSearchRings = 50;
 
 bool insideWorkspace(const BodyTask& task, const Eigen::VectorXd& p) {
   for (int d = 0; d < p.size(); ++d) {
@@ -461,15 +466,13 @@ int bodyPairIndex(const std::vector<ContactPair>& pairs, int a, int b) {
   return -1;
 }
 
-/// The pushers of one passive body, placed in index order.
+/// The pushers of one passive body pushed from its start to `end`, placed in index order.
 std::vector<PushAssignment> placePushers(const SceneTask& task,
                                          const std::vector<ContactPair>& pairs, int pushed,
-                                         std::vector<bool>& busy) {
+                                         const Eigen::VectorXd& end, std::vector<bool>& busy) {
   const DiscScene& scene = task.scene;
   const Eigen::VectorXd start = scene.bodies()[pushed].position;
-  const Eigen::VectorXd target = task.bodies[pushed].target;
-  const std::vector<Eigen::VectorXd> candidates =
-      candidateDirections((target - start).normalized());
+  const std::vector<Eigen::VectorXd> candidates = candidateDirections((end - start).normalized());
   std::vector<PushAssignment> placed;
   for (int pusher = 0; pusher < static_cast<int>(scene.bodies().size()); ++pusher) {
     if (!scene.bodies()[pusher].actuated || busy[pusher] ||
@@ -482,7 +485,7 @@ std::vector<PushAssignment> placePushers(const SceneTask& task,
       const Eigen::VectorXd offset = distance * direction;
       const bool fits =
           insideWorkspace(task.bodies[pusher], start + offset) &&
-          insideWorkspace(task.bodies[pusher], target + offset) &&
+          insideWorkspace(task.bodies[pusher], end + offset) &&
           std::all_of(placed.begin(), placed.end(), [&](const PushAssignment& p) {
             return (p.offset - offset).norm() >= radius + scene.bodies()[p.pusher].radius;
           });
@@ -495,12 +498,92 @@ std::vector<PushAssignment> placePushers(const SceneTask& task,
   return placed;
 }
 
+/// How much of a displacement the placed pushers cannot produce (relative): each pushes only
+/// along its offset, so the displacement must lie in the cone of the offsets.
+double unpushableFraction(const std::vector<PushAssignment>& placed,
+                          const Eigen::VectorXd& displacement) {
+  if (displacement.norm() == 0.0) return 0.0;
+  if (placed.empty()) return 1.0;
+  Eigen::MatrixXd G(displacement.size(), placed.size());
+  for (size_t k = 0; k < placed.size(); ++k) G.col(k) = -placed[k].offset;
+  return (G * nonnegativeLeastSquares(G, displacement) - displacement).norm() / displacement.norm();
+}
+
+bool clearOfObstaclesAndWalls(const DiscScene& scene, int body, const Eigen::VectorXd& p) {
+  const double radius = scene.bodies()[body].radius;
+  for (const SceneObstacle& obstacle : scene.obstacles()) {
+    if ((p - obstacle.position).norm() < radius + obstacle.radius) return false;
+  }
+  for (const SceneWall& wall : scene.walls()) {
+    if (wall.normal.dot(p) - wall.offset < radius) return false;
+  }
+  return true;
+}
+
+/// Unit directions to search around a point: 72 in the plane, 26 in space (a cube's faces,
+/// edges and corners), in a fixed order.
+std::vector<Eigen::VectorXd> searchDirections(int dim) {
+  std::vector<Eigen::VectorXd> directions;
+  if (dim == 2) {
+    for (int k = 0; k < 72; ++k) {
+      directions.push_back(
+          Eigen::Vector2d(std::cos(5.0 * k * kDegree), std::sin(5.0 * k * kDegree)));
+    }
+    return directions;
+  }
+  for (int x = -1; x <= 1; ++x) {
+    for (int y = -1; y <= 1; ++y) {
+      for (int z = -1; z <= 1; ++z) {
+        if (x || y || z) directions.push_back(Eigen::Vector3d(x, y, z).normalized());
+      }
+    }
+  }
+  return directions;
+}
+
+/// Where the plan pushes a passive body: its target when the pushers can be placed to push it
+/// there (workspace bounds) and it is clear of obstacles and walls; otherwise the nearest such
+/// end on rings around the target, 2 % of the push's length apart, refined by bisection along
+/// the direction found (the start if none is). A
+/// soft target out of reach then gets a first guess near the best plan, not one that pushes
+/// wherever the pushers happen to fit.
+Eigen::VectorXd pushableEnd(const SceneTask& task, const std::vector<ContactPair>& pairs,
+                            int pushed, const std::vector<bool>& busy) {
+  const DiscScene& scene = task.scene;
+  const Eigen::VectorXd start = scene.bodies()[pushed].position;
+  const Eigen::VectorXd target = task.bodies[pushed].target;
+  const auto pushable = [&](const Eigen::VectorXd& end) {
+    if (!clearOfObstaclesAndWalls(scene, pushed, end)) return false;
+    std::vector<bool> trial = busy;
+    return unpushableFraction(placePushers(task, pairs, pushed, end, trial), end - start) <
+           kUnpushableFraction;
+  };
+  if (pushable(target)) return target;
+  const double length = (target - start).norm();
+  const std::vector<Eigen::VectorXd> directions = searchDirections(scene.dimension());
+  const double spacing = length / kSearchRings;
+  for (int ring = 1; ring <= kSearchRings; ++ring) {
+    for (const Eigen::VectorXd& direction : directions) {
+      if (!pushable(target + ring * spacing * direction)) continue;
+      // The ring inside was out of reach in this direction: bisect between the two.
+      double reachable = ring * spacing, unreachable = (ring - 1) * spacing;
+      for (int halving = 0; halving < 10; ++halving) {
+        const double middle = 0.5 * (reachable + unreachable);
+        (pushable(target + middle * direction) ? reachable : unreachable) = middle;
+      }
+      return target + reachable * direction;
+    }
+  }
+  return start;
+}
+
 }  // namespace
 
 PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs) {
   const DiscScene& scene = task.scene;
   const int count = static_cast<int>(scene.bodies().size()), dim = scene.dimension();
   PushPlan plan;
+  SceneTask planned = task;  // with the pushed bodies' ends the pushers can reach
   std::vector<bool> busy(count, false);
   for (int b = 0; b < count; ++b) {
     const BodyTask& t = task.bodies[b];
@@ -508,7 +591,10 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
         (t.target - scene.bodies()[b].position).norm() == 0.0) {
       continue;
     }
-    const std::vector<PushAssignment> pushers = placePushers(task, pairs, b, busy);
+    const Eigen::VectorXd end = pushableEnd(task, pairs, b, busy);
+    if (end != t.target) plan.short_pushes.push_back({b, end});
+    planned.bodies[b].target = end;
+    const std::vector<PushAssignment> pushers = placePushers(task, pairs, b, end, busy);
     plan.pushes.insert(plan.pushes.end(), pushers.begin(), pushers.end());
   }
 
@@ -525,7 +611,7 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
     Eigen::MatrixXd G(dim, own.size());
     for (size_t k = 0; k < own.size(); ++k) G.col(k) = -2.0 * own[k]->offset;
     const Eigen::VectorXd lambda =
-        nonnegativeLeastSquares(G, task.bodies[b].target - scene.bodies()[b].position);
+        nonnegativeLeastSquares(G, planned.bodies[b].target - scene.bodies()[b].position);
     for (size_t k = 0; k < own.size(); ++k) {
       impulse(bodyPairIndex(pairs, own[k]->pusher, b)) = lambda(k);
     }
@@ -536,7 +622,7 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
   double approach = 0.0, push = 0.0, back = 0.0;
   for (const PushAssignment& p : plan.pushes) {
     const Eigen::VectorXd start = scene.bodies()[p.pushed].position;
-    const Eigen::VectorXd target = task.bodies[p.pushed].target;
+    const Eigen::VectorXd target = planned.bodies[p.pushed].target;
     const BodyTask& pusher = task.bodies[p.pusher];
     approach += (start + p.offset - scene.bodies()[p.pusher].position).squaredNorm();
     push += (target - start - 2.0 * p.offset * impulse(bodyPairIndex(pairs, p.pusher, p.pushed)))
@@ -551,7 +637,7 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
     plan.contact_time = task.horizon * std::sqrt(approach) / total;
     plan.release_time = task.horizon * (std::sqrt(approach) + std::sqrt(push)) / total;
   }
-  const auto motion = std::make_shared<const PlannedMotion>(task, pairs, plan.pushes,
+  const auto motion = std::make_shared<const PlannedMotion>(planned, pairs, plan.pushes,
                                                             plan.contact_time, plan.release_time);
   plan.guess.state = [motion](double t) { return motion->state(t); };
   plan.guess.multipliers = [motion](double t) { return motion->multipliers(t); };

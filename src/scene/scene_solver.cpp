@@ -114,7 +114,17 @@ void chooseFirstPairs(const SceneTask& task, const std::vector<ContactPair>& can
 
 /// Each body's distance from its target at the end; a successful outcome that misses one by more
 /// than targetTolerance is kTargetNotReached, its message naming every target missed.
-void judgeTargets(const SceneTask& task, SceneOutcome& outcome) {
+/// The task with each target the push plan found out of the pushers' reach replaced by the
+/// nearest end it pushes to.
+SceneTask reachableTask(const SceneTask& task, const PushPlan& plan) {
+  SceneTask reachable = task;
+  for (const PushPlan::ShortPush& push : plan.short_pushes) {
+    reachable.bodies[push.body].target = push.end;
+  }
+  return reachable;
+}
+
+void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const PushPlan& plan) {
   const DiscScene& scene = task.scene;
   const Eigen::VectorXd end = outcome.trajectory.finalState();
   std::ostringstream missed;
@@ -129,6 +139,12 @@ void judgeTargets(const SceneTask& task, SceneOutcome& outcome) {
     missed << (missed.tellp() > 0 ? "; " : "") << "body '" << scene.bodies()[b].name << "' ends "
            << distance << " from its target (" << t.target.transpose() << "), tolerance "
            << targetTolerance(t.target_weight);
+    for (const PushPlan::ShortPush& push : plan.short_pushes) {
+      if (push.body != static_cast<int>(b)) continue;
+      missed << " (out of the pushers' reach: workspace bounds, obstacles or walls; planned to "
+                "the nearest end they can push it to, ("
+             << push.end.transpose() << "))";
+    }
   }
   if (outcome.status == SolveStatus::kSuccess && missed.tellp() > 0) {
     outcome.status = SolveStatus::kTargetNotReached;
@@ -237,12 +253,15 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
   }
   const std::vector<ContactPair> candidates = modelledPairs(outcome.decisions);
   const PushPlan plan = planPushes(task, candidates);
-  chooseFirstPairs(task, candidates, plan.guess, options, outcome);
+  // A soft target out of the pushers' reach: the OCP aims at the nearest end the plan can push
+  // to (a reachable task, solved as fast as one), and the answer is judged by the real target.
+  const SceneTask aimed = reachableTask(task, plan);
+  chooseFirstPairs(aimed, candidates, plan.guess, options, outcome);
   Trajectory previous_round;
   std::vector<ContactPair> previous_pairs;
   std::string rounds_note;
   for (int round = 1;; ++round) {
-    const MovingPart part = movingPartOf(task, outcome);
+    const MovingPart part = movingPartOf(aimed, outcome);
     const OcpDefinition ocp = buildOcp(part.task, part.modelled);
     OcpOptions ocp_options = options.ocp;
     ocp_options.homotopy.wall_time_budget =
@@ -251,8 +270,8 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     solver.setMonitor(options.monitor);
     const NlpAssembly& nlp = solver.discretization().nlp();
     outcome.sizes = {nlp.numVariables(), nlp.numConstraints(), nlp.numComplementarities()};
-    outcome.structure = planStructure(task, outcome, options.ocp.discretization);
-    const TrajectoryGuess guess = partGuess(task, part, plan.guess, candidates);
+    outcome.structure = planStructure(aimed, outcome, options.ocp.discretization);
+    const TrajectoryGuess guess = partGuess(aimed, part, plan.guess, candidates);
     OcpSolution solution;
     if (round == 1) {
       if (options.previous != nullptr) {
@@ -266,7 +285,7 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
         outcome.cold_start_reason = "the warm solve failed";
       }
     } else {
-      solution = solver.solve(partTrajectory(task, part, previous_round, previous_pairs), guess);
+      solution = solver.solve(partTrajectory(aimed, part, previous_round, previous_pairs), guess);
       solution.report.history.insert(solution.report.history.begin(),
                                      outcome.report.history.begin(), outcome.report.history.end());
       solution.report.addEffort(outcome.report);
@@ -274,15 +293,15 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     outcome.status = solution.status;
     outcome.message = solution.message;
     outcome.start = solution.start;
-    outcome.trajectory = fullSceneTrajectory(task, part, solution.trajectory);
+    outcome.trajectory = fullSceneTrajectory(aimed, part, solution.trajectory);
     outcome.report = solution.report;
     outcome.pair_rounds = round;
     previous_round = outcome.trajectory;
     previous_pairs = part.modelled_in_task;
-    if (!measureGaps(task, options, round, outcome, rounds_note)) break;
+    if (!measureGaps(aimed, options, round, outcome, rounds_note)) break;
   }
   outcome.message += rounds_note;
-  judgeTargets(task, outcome);
+  judgeTargets(task, outcome, plan);
   if (options.verify && outcome.status != SolveStatus::kCancelled) {
     SimulationOptions fine;
     fine.discretization = options.verification;

@@ -8,6 +8,7 @@
 #include "fesd_trajopt/examples/planning_scenes.h"
 #include "fesd_trajopt/scene/pair_check.h"
 #include "fesd_trajopt/scene/scene_solver.h"
+#include "support/scene_tasks.h"
 
 namespace {
 
@@ -17,15 +18,8 @@ namespace ps = fesd::planning_scenes;
 /// (3, 0) in T = 2 on 20 intervals, and passive discs (R = 0.5) where given.
 ps::PlanningScene pushThrough(const std::vector<Eigen::Vector2d>& discs) {
   ps::PlanningScene scene;
+  scene.task = fesd_test::pushAlongX();
   fesd::SceneTask& task = scene.task;
-  task.scene.bodies() = {{"pusher", 0.5, Eigen::Vector2d(-2.0, 0.0), true},
-                         {"puck", 0.5, Eigen::Vector2d(0.0, 0.0), false}};
-  task.bodies.resize(2);
-  task.bodies[0].max_speed = 4.0;
-  task.bodies[1].target = Eigen::Vector2d(3.0, 0.0);
-  task.bodies[1].target_weight = 100.0;
-  task.horizon = 2.0;
-  task.num_intervals = 20;
   for (size_t i = 0; i < discs.size(); ++i) {
     task.scene.bodies().push_back({"disc_" + std::to_string(i), 0.5, discs[i], false});
     task.bodies.emplace_back();

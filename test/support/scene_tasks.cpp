@@ -27,4 +27,17 @@ fesd::SceneTask slowPushingTask() {
   return task;
 }
 
+fesd::SceneTask pushAlongX() {
+  fesd::SceneTask task;
+  task.scene.bodies() = {{"pusher", 0.5, Eigen::Vector2d(-2.0, 0.0), true},
+                         {"puck", 0.5, Eigen::Vector2d(0.0, 0.0), false}};
+  task.bodies.resize(2);
+  task.bodies[0].max_speed = 4.0;
+  task.bodies[1].target = Eigen::Vector2d(3.0, 0.0);
+  task.bodies[1].target_weight = 100.0;
+  task.horizon = 2.0;
+  task.num_intervals = 20;
+  return task;
+}
+
 }  // namespace fesd_test

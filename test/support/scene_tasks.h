@@ -16,4 +16,8 @@ fesd::SceneTask pushingTaskWithPost();
 /// both can get at most D = T sqrt(2) = 2.83 from their starts. A rock (R = 0.5) at (50, 0).
 fesd::SceneTask slowPushingTask();
 
+/// A pusher (R = 0.5, |u| <= 4) at (-2, 0) and a puck (R = 0.5) to be pushed from the origin to
+/// (3, 0) (weight 100) in T = 2 on 20 intervals.
+fesd::SceneTask pushAlongX();
+
 }  // namespace fesd_test

@@ -9,6 +9,7 @@
 #include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/scene/pair_check.h"
 #include "fesd_trajopt/scene/push_plan.h"
+#include "support/scene_tasks.h"
 
 namespace {
 
@@ -115,23 +116,8 @@ TEST(PushPlan, PathsStepAroundWhatTheyWouldPassThrough) {
   }
 }
 
-/// A pusher (R = 0.5, |u| <= 4) at (-2, 0) and a puck (R = 0.5) to be pushed from the origin to
-/// (3, 0) in T = 2, with `extra` bodies and obstacles.
-fesd::SceneTask pushAlongX() {
-  fesd::SceneTask task;
-  task.scene.bodies() = {{"pusher", 0.5, Eigen::Vector2d(-2.0, 0.0), true},
-                         {"puck", 0.5, Eigen::Vector2d(0.0, 0.0), false}};
-  task.bodies.resize(2);
-  task.bodies[0].max_speed = 4.0;
-  task.bodies[1].target = Eigen::Vector2d(3.0, 0.0);
-  task.bodies[1].target_weight = 100.0;
-  task.horizon = 2.0;
-  task.num_intervals = 20;
-  return task;
-}
-
 TEST(PushPlan, ABodyInThePushedBodysWayIsShovedAlongAsTheProjectionWould) {
-  fesd::SceneTask task = pushAlongX();
+  fesd::SceneTask task = fesd_test::pushAlongX();
   task.scene.bodies().push_back({"rock", 0.5, Eigen::Vector2d(1.5, 0.3), false});
   task.bodies.emplace_back();
   const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();  // pusher/puck first
@@ -172,7 +158,7 @@ TEST(PushPlan, ABodyInThePushedBodysWayIsShovedAlongAsTheProjectionWould) {
 }
 
 TEST(PushPlan, ThePushedBodyGoesAroundAnObstacleInItsWay) {
-  fesd::SceneTask task = pushAlongX();
+  fesd::SceneTask task = fesd_test::pushAlongX();
   task.scene.obstacles() = {{"post", 0.4, Eigen::Vector2d(1.5, 0.0)}};  // dead ahead
   const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();
   const fesd::PushPlan plan = fesd::planPushes(task, pairs);
@@ -186,6 +172,33 @@ TEST(PushPlan, ThePushedBodyGoesAroundAnObstacleInItsWay) {
   EXPECT_NEAR(sideways, 0.9, 1e-3);  // around it at contact distance, continuously
   EXPECT_LT((plan.guess.state(plan.release_time).segment<2>(2) - Eigen::Vector2d(3, 0)).norm(),
             1e-12);
+}
+
+TEST(PushPlan, ATargetBeyondThePushersReachIsReplacedByTheNearestEndTheyCanPushTo) {
+  // The showcase's actuators stay at |x| >= 2.5, 3 from the object's centre in contact: behind
+  // an object at x > 0.5 only actuator_2 fits, and it cannot push it straight up.
+  const fesd::SceneTask reachable = example::task(40, Eigen::Vector2d(0.3, 10.0));
+  EXPECT_TRUE(fesd::planPushes(reachable, example::contactPairs()).short_pushes.empty());
+  const Eigen::Vector2d target(1.2, 10.0);
+  const fesd::PushPlan plan = fesd::planPushes(example::task(40, target), example::contactPairs());
+  ASSERT_EQ(plan.short_pushes.size(), 1u);
+  EXPECT_EQ(plan.short_pushes[0].body, 2);
+  const Eigen::VectorXd end = plan.short_pushes[0].end;
+  EXPECT_GT(end.x(), 0.2);  // as far right as both actuators can still push from behind
+  EXPECT_LT(end.x(), 0.6);
+  EXPECT_LT((end - target).norm(), 1.0);
+  ASSERT_EQ(plan.pushes.size(), 2u);  // both push, to the end the plan aims at
+  EXPECT_LT((plan.guess.state(plan.release_time).segment<2>(4) - end).norm(), 1e-6);
+}
+
+TEST(PushPlan, ATargetInsideAnObstacleIsReplacedByAnEndClearOfIt) {
+  fesd::SceneTask task = example::task(40, Eigen::Vector2d(0.0, 10.0));
+  task.scene.obstacles().push_back({"rock", 1.0, Eigen::Vector2d(0.0, 10.5)});
+  const fesd::PushPlan plan = fesd::planPushes(task, example::contactPairs());
+  ASSERT_EQ(plan.short_pushes.size(), 1u);
+  const double clearance = (plan.short_pushes[0].end - Eigen::Vector2d(0.0, 10.5)).norm();
+  EXPECT_GE(clearance, 3.0);  // the object's radius 2 plus the rock's 1
+  EXPECT_LT(clearance, 3.0 + 0.1);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // Scenes from URDF (scene/urdf_scene.cpp): spheres and upright cylinders become bodies, fixed
 // links obstacles, in the plane and in space; malformed XML is refused with a message.
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -47,3 +48,42 @@ TEST(UrdfScene, SpheresAndUprightCylindersBecomeBodiesAndFixedLinksObstacles) {
 }
 
 }  // namespace
+
+namespace {
+
+// A serial chain of `links` links on revolute joints, each with a sphere 1 beyond its parent.
+std::string chainUrdf(int links) {
+  std::ostringstream xml;
+  xml << "<robot name=\"chain\"><link name=\"l0\"/>";
+  for (int i = 1; i < links; ++i) {
+    xml << "<link name=\"l" << i << "\"><collision><geometry><sphere radius=\"0.1\"/></geometry>"
+        << "</collision></link><joint name=\"j" << i << "\" type=\"continuous\"><parent link=\"l"
+        << i - 1 << "\"/><child link=\"l" << i << "\"/><origin xyz=\"1 0 0\"/>"
+        << "<axis xyz=\"0 0 1\"/></joint>";
+  }
+  xml << "</robot>";
+  return xml.str();
+}
+
+}  // namespace
+
+TEST(UrdfScene, ALongChainIsRefusedBeforeItIsWalked) {
+  const fesd::UrdfScene refused = fesd::sceneFromUrdf(chainUrdf(20000), true);
+  EXPECT_NE(refused.error.find("too many links: 20000 > 2000"), std::string::npos) << refused.error;
+  fesd::UrdfLimits small_files;
+  small_files.max_bytes = 1000;
+  EXPECT_NE(fesd::sceneFromUrdf(chainUrdf(100), true, small_files).error.find("URDF too large"),
+            std::string::npos);
+}
+
+TEST(UrdfScene, AChainDeeperThanAnyCallStackIsWalkedInOrder) {
+  // 20000 links deep: a recursive walk (one stack frame per link) crashed the node here.
+  fesd::UrdfLimits generous;
+  generous.max_links = 30000;
+  const fesd::UrdfScene chain = fesd::sceneFromUrdf(chainUrdf(20000), true, generous);
+  ASSERT_TRUE(chain.error.empty()) << chain.error;
+  ASSERT_EQ(chain.scene.bodies().size(), 19999u);
+  EXPECT_EQ(chain.scene.bodies().front().name, "l1");
+  EXPECT_EQ(chain.scene.bodies().back().name, "l19999");
+  EXPECT_DOUBLE_EQ(chain.scene.bodies().back().position.x(), 19999.0);
+}

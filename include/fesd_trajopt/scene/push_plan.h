@@ -37,6 +37,13 @@ struct PushPlan {
   /// Where the push phase begins and ends (both the horizon when nothing is pushed).
   double contact_time = 0.0, release_time = 0.0;
   std::vector<PushAssignment> pushes;
+  /// Pushed bodies whose target the pushers cannot reach (workspace bounds, or it lies in an
+  /// obstacle): the plan pushes them to the nearest end they can.
+  struct ShortPush {
+    int body;
+    Eigen::VectorXd end;
+  };
+  std::vector<ShortPush> short_pushes;
   TrajectoryGuess guess;  ///< of the task's full state; multipliers per pair of planPushes' list
 };
 
@@ -44,7 +51,8 @@ struct PushPlan {
 /// pair of `pairs`. Its pushing pose is the one most directly behind the push direction
 /// (tilted in steps of 1 degree up to 89) that keeps it inside its workspace bounds at the
 /// start and end of the push and apart from the pushers placed before it. Only the pairs in
-/// `pairs` touch in the plan, and the guess's multipliers are theirs, in that order.
+/// `pairs` touch in the plan, and the guess's multipliers are theirs, in that order. A target
+/// no placement of pushers can push to is replaced in the plan by the nearest end one can.
 PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs);
 
 }  // namespace fesd
