@@ -88,6 +88,7 @@ NodeConfig loadNodeConfig(const ros::NodeHandle& node) {
     throw std::runtime_error("parameter contact_margin must be finite and >= 0");
   }
   node.param("limits/max_bodies", c.limits.max_bodies, c.limits.max_bodies);
+  node.param("limits/max_spheres", c.limits.max_spheres, c.limits.max_spheres);
   node.param("limits/max_obstacles", c.limits.max_obstacles, c.limits.max_obstacles);
   node.param("limits/max_walls", c.limits.max_walls, c.limits.max_walls);
   node.param("limits/max_intervals", c.limits.max_intervals, c.limits.max_intervals);

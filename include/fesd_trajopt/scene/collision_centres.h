@@ -1,0 +1,58 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "fesd_trajopt/kinematics/forward_kinematics.h"
+
+namespace fesd {
+
+/// A collision body's centre as a function of the state x: a free body's position (x itself,
+/// linear) or a robot sphere's centre (forward kinematics of the joint coordinates q = x.head(nq)).
+struct CollisionCentre {
+  enum class Source { kFreeBody, kRobotSphere };
+  Source source;
+  int index;  ///< free body: the state index of its first coordinate; robot sphere: the sphere
+};
+
+/// Evaluates collision centres and their derivatives in the few state coordinates each depends on
+/// (its variables: a free body's coordinates, a sphere's chain of joints), for both kinds alike.
+/// Centres are 3-vectors; in a planar scene (dimension 2) z and its derivatives are 0, which is
+/// exact for a planar robot (isPlanar: its spheres keep their z).
+class CentreEvaluator {
+ public:
+  /// `robot` may be null (no robot spheres); q is x's first robot->numCoordinates() entries.
+  CentreEvaluator(std::shared_ptr<const KinematicModel> robot, int dimension);
+
+  int dimension() const { return dimension_; }
+  const KinematicModel* robot() const { return robot_.get(); }
+  /// The state indices a centre depends on, ascending.
+  std::vector<int> variables(const CollisionCentre& centre) const;
+
+  /// Forward kinematics at x; every evaluation below refers to the last x set.
+  void setState(const double* x);
+  Eigen::Vector3d position(const CollisionCentre& centre) const;
+  /// 3 x variables(centre).size().
+  Eigen::Matrix3Xd jacobian(const CollisionCentre& centre) const;
+  /// The Hessian of w . p(x) in the centre's variables (0 for a free body).
+  Eigen::MatrixXd weightedHessian(const CollisionCentre& centre, const Eigen::Vector3d& w) const;
+  /// The derivative of weightedHessian along v (in the centre's variables, fixed w).
+  Eigen::MatrixXd weightedThirdDerivative(const CollisionCentre& centre, const Eigen::Vector3d& w,
+                                          const Eigen::VectorXd& v) const;
+
+ private:
+  /// The robot's full-q vector holding a sphere's chain-local vector v.
+  Eigen::VectorXd chainToFull(int sphere, const Eigen::VectorXd& v) const;
+  /// The chain's rows and columns of a full nq x nq matrix, with the plane's projection.
+  Eigen::MatrixXd chainBlock(int sphere, const Eigen::MatrixXd& full) const;
+  Eigen::Vector3d inPlane(Eigen::Vector3d w) const;
+
+  std::shared_ptr<const KinematicModel> robot_;
+  int dimension_;
+  KinematicData data_;
+  const double* free_state_ = nullptr;  ///< the x of the last setState (not owned)
+};
+
+}  // namespace fesd

@@ -1,0 +1,15 @@
+#pragma once
+
+#include <memory>
+
+#include "fesd_trajopt/scene/robot_task.h"
+
+namespace fesd {
+
+/// The shipped planar-arm push (config/robots/planar_arm.urdf: shoulder, elbow, wrist about z):
+/// the arm starts at q0 = (-0.6, 0, 0), pointing below the x axis, and pushes a disc of radius
+/// 0.05 at (0.6, 0) to (0.6, 0.2) (weight 100) within 2 s on 10 control intervals, the joints
+/// at their URDF speed limits; no joint targets.
+RobotTask planarArmPushTask(std::shared_ptr<const KinematicModel> arm);
+
+}  // namespace fesd

@@ -1,0 +1,334 @@
+#include "fesd_trajopt/scene/centre_pair_model.h"
+
+#include <algorithm>
+#include <map>
+
+namespace fesd {
+namespace {
+
+/// The union of a pair's variables and where each side's variables sit in it.
+struct PairLayout {
+  std::vector<int> variables;  ///< ascending state indices
+  std::vector<int> a_slots, b_slots;
+  bool curved = false;  ///< a robot sphere is involved: c has third derivatives
+};
+
+PairLayout layoutOf(const CentreEvaluator& evaluator, const CentrePair& pair) {
+  PairLayout layout;
+  const std::vector<int> a = evaluator.variables(pair.a);
+  const std::vector<int> b =
+      pair.kind == CentrePair::Kind::kCentre ? evaluator.variables(pair.b) : std::vector<int>{};
+  std::vector<int> all = a;
+  all.insert(all.end(), b.begin(), b.end());
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  layout.variables = all;
+  const auto slot = [&](int v) {
+    return static_cast<int>(std::lower_bound(all.begin(), all.end(), v) - all.begin());
+  };
+  for (int v : a) layout.a_slots.push_back(slot(v));
+  for (int v : b) layout.b_slots.push_back(slot(v));
+  const auto is_sphere = [](const CollisionCentre& c) {
+    return c.source == CollisionCentre::Source::kRobotSphere;
+  };
+  layout.curved =
+      is_sphere(pair.a) || (pair.kind == CentrePair::Kind::kCentre && is_sphere(pair.b));
+  return layout;
+}
+
+/// A pair's derivatives in its local variables at the evaluator's state.
+class LocalPair {
+ public:
+  LocalPair(const CentreEvaluator& evaluator, const CentrePair& pair, const PairLayout& layout)
+      : evaluator_(evaluator), pair_(pair), layout_(layout) {
+    const int n = static_cast<int>(layout.variables.size());
+    jacobian_ = Eigen::Matrix3Xd::Zero(3, n);
+    scatterColumns(evaluator.jacobian(pair.a), layout.a_slots, 1.0);
+    difference_ = evaluator.position(pair.a);
+    if (pair.kind == CentrePair::Kind::kCentre) {
+      scatterColumns(evaluator.jacobian(pair.b), layout.b_slots, -1.0);
+      difference_ -= evaluator.position(pair.b);
+    } else if (pair.kind == CentrePair::Kind::kPoint) {
+      difference_ -= pair.point;
+    }
+  }
+
+  double value() const {
+    if (pair_.kind == CentrePair::Kind::kWall) return pair_.point.dot(difference_) - pair_.constant;
+    return difference_.squaredNorm() - pair_.constant;
+  }
+
+  Eigen::VectorXd gradient() const {
+    if (pair_.kind == CentrePair::Kind::kWall) return jacobian_.transpose() * pair_.point;
+    return 2.0 * jacobian_.transpose() * difference_;
+  }
+
+  Eigen::MatrixXd hessian() const {
+    if (pair_.kind == CentrePair::Kind::kWall) return curvature(pair_.point);
+    return 2.0 * (jacobian_.transpose() * jacobian_ + curvature(difference_));
+  }
+
+  /// d/dx (Hess c) along w (local variables): the third derivatives of c contracted with w.
+  Eigen::MatrixXd thirdDerivative(const Eigen::VectorXd& w) const {
+    const int n = static_cast<int>(layout_.variables.size());
+    if (!layout_.curved) return Eigen::MatrixXd::Zero(n, n);
+    if (pair_.kind == CentrePair::Kind::kWall) return third(pair_.point, w);
+    // c_ij = 2 sum_m (D_mi D_mj + d_m H_m,ij); differentiating along w gives
+    // 2 (G D + D^T G^T + H[D w] + T[d, w]) with column m of G the vector H_m w.
+    Eigen::MatrixXd g(n, 3);
+    for (int m = 0; m < 3; ++m) g.col(m) = curvature(Eigen::Vector3d::Unit(m)) * w;
+    const Eigen::MatrixXd gd = g * jacobian_;
+    return 2.0 * (gd + gd.transpose() + curvature(jacobian_ * w) + third(difference_, w));
+  }
+
+ private:
+  void scatterColumns(const Eigen::Matrix3Xd& columns, const std::vector<int>& slots, double sign) {
+    for (size_t c = 0; c < slots.size(); ++c) jacobian_.col(slots[c]) += sign * columns.col(c);
+  }
+
+  /// Hess (w . d(x)) in the local variables.
+  Eigen::MatrixXd curvature(const Eigen::Vector3d& w) const {
+    const int n = static_cast<int>(layout_.variables.size());
+    Eigen::MatrixXd result = Eigen::MatrixXd::Zero(n, n);
+    if (!layout_.curved) return result;
+    scatterBlock(evaluator_.weightedHessian(pair_.a, w), layout_.a_slots, 1.0, result);
+    if (pair_.kind == CentrePair::Kind::kCentre) {
+      scatterBlock(evaluator_.weightedHessian(pair_.b, w), layout_.b_slots, -1.0, result);
+    }
+    return result;
+  }
+
+  /// d/dx Hess (w . d(x)) along v (local variables), w fixed.
+  Eigen::MatrixXd third(const Eigen::Vector3d& w, const Eigen::VectorXd& v) const {
+    const int n = static_cast<int>(layout_.variables.size());
+    Eigen::MatrixXd result = Eigen::MatrixXd::Zero(n, n);
+    scatterBlock(evaluator_.weightedThirdDerivative(pair_.a, w, gather(v, layout_.a_slots)),
+                 layout_.a_slots, 1.0, result);
+    if (pair_.kind == CentrePair::Kind::kCentre) {
+      scatterBlock(evaluator_.weightedThirdDerivative(pair_.b, w, gather(v, layout_.b_slots)),
+                   layout_.b_slots, -1.0, result);
+    }
+    return result;
+  }
+
+  static Eigen::VectorXd gather(const Eigen::VectorXd& v, const std::vector<int>& slots) {
+    Eigen::VectorXd result(slots.size());
+    for (size_t s = 0; s < slots.size(); ++s) result(s) = v(slots[s]);
+    return result;
+  }
+
+  static void scatterBlock(const Eigen::MatrixXd& block, const std::vector<int>& slots, double sign,
+                           Eigen::MatrixXd& into) {
+    for (size_t r = 0; r < slots.size(); ++r) {
+      for (size_t c = 0; c < slots.size(); ++c) into(slots[r], slots[c]) += sign * block(r, c);
+    }
+  }
+
+  const CentreEvaluator& evaluator_;
+  const CentrePair& pair_;
+  const PairLayout& layout_;
+  Eigen::Matrix3Xd jacobian_;
+  Eigen::Vector3d difference_;
+};
+
+/// Deduplicating builder for a sparsity pattern: (row, col) -> slot.
+class PatternBuilder {
+ public:
+  int slot(int row, int col) {
+    const auto inserted = index_.emplace(std::make_pair(row, col), pattern.nonzeros());
+    if (inserted.second) pattern.add(row, col);
+    return inserted.first->second;
+  }
+  SparsityPattern pattern;
+
+ private:
+  std::map<std::pair<int, int>, int> index_;
+};
+
+/// The pairs' shared state: layouts and the (mutable) evaluator.
+class PairSet {
+ public:
+  explicit PairSet(const CentrePairSystem& system)
+      : system_(system), evaluator_(system.robot, system.dimension) {
+    for (const CentrePair& pair : system_.pairs) layouts_.push_back(layoutOf(evaluator_, pair));
+  }
+  int size() const { return static_cast<int>(system_.pairs.size()); }
+  const CentrePairSystem& system() const { return system_; }
+  const PairLayout& layout(int k) const { return layouts_[k]; }
+  /// Sets the state; then local(k) gives pair k's derivatives there.
+  void setState(const double* x) const { evaluator_.setState(x); }
+  LocalPair local(int k) const { return LocalPair(evaluator_, system_.pairs[k], layouts_[k]); }
+
+ private:
+  CentrePairSystem system_;
+  mutable CentreEvaluator evaluator_;
+  std::vector<PairLayout> layouts_;
+};
+
+/// c(x) of every pair.
+class CentreConstraints : public SmoothFunction {
+ public:
+  explicit CentreConstraints(std::shared_ptr<const PairSet> pairs) : pairs_(std::move(pairs)) {
+    PatternBuilder hessian;
+    for (int k = 0; k < pairs_->size(); ++k) {
+      const std::vector<int>& v = pairs_->layout(k).variables;
+      for (int a : v) jacobian_.add(k, a);
+      std::vector<int> slots;
+      for (size_t i = 0; i < v.size(); ++i) {
+        for (size_t j = 0; j <= i; ++j) slots.push_back(hessian.slot(v[i], v[j]));
+      }
+      hessian_slots_.push_back(slots);
+    }
+    hessian_ = hessian.pattern;
+  }
+
+  int inputSize() const override { return pairs_->system().state_size; }
+  int outputSize() const override { return pairs_->size(); }
+  void evaluate(const double* x, double* c) const override {
+    pairs_->setState(x);
+    for (int k = 0; k < outputSize(); ++k) c[k] = pairs_->local(k).value();
+  }
+  const SparsityPattern& jacobianPattern() const override { return jacobian_; }
+  void evaluateJacobian(const double* x, double* values) const override {
+    pairs_->setState(x);
+    int e = 0;
+    for (int k = 0; k < outputSize(); ++k) {
+      const Eigen::VectorXd g = pairs_->local(k).gradient();
+      for (int i = 0; i < g.size(); ++i) values[e++] = g(i);
+    }
+  }
+  const SparsityPattern& hessianPattern() const override { return hessian_; }
+  void evaluateHessian(const double* x, const double* weights, double* values) const override {
+    std::fill(values, values + hessian_.nonzeros(), 0.0);
+    pairs_->setState(x);
+    for (int k = 0; k < outputSize(); ++k) {
+      if (weights[k] == 0.0) continue;
+      const Eigen::MatrixXd h = pairs_->local(k).hessian();
+      int s = 0;
+      for (int i = 0; i < h.rows(); ++i) {
+        for (int j = 0; j <= i; ++j) values[hessian_slots_[k][s++]] += weights[k] * h(i, j);
+      }
+    }
+  }
+
+ private:
+  std::shared_ptr<const PairSet> pairs_;
+  SparsityPattern jacobian_, hessian_;
+  std::vector<std::vector<int>> hessian_slots_;  ///< per pair, its lower triangle row by row
+};
+
+/// v(x, u, lambda) = B u + sum_k lambda_k grad c_k(x).
+class CentreVelocity : public SmoothFunction {
+ public:
+  explicit CentreVelocity(std::shared_ptr<const PairSet> pairs) : pairs_(std::move(pairs)) {
+    const CentrePairSystem& system = pairs_->system();
+    nx_ = system.state_size;
+    nu_ = system.control_size;
+    PatternBuilder jacobian, hessian;
+    for (const auto& [state, control] : system.actuation) {
+      actuation_slots_.push_back(jacobian.slot(state, nx_ + control));
+    }
+    for (int k = 0; k < pairs_->size(); ++k) {
+      const PairLayout& layout = pairs_->layout(k);
+      const std::vector<int>& v = layout.variables;
+      const int n = static_cast<int>(v.size());
+      PairSlots slots;
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) slots.curvature.push_back(jacobian.slot(v[i], v[j]));
+        slots.gradient.push_back(jacobian.slot(v[i], nx_ + nu_ + k));
+      }
+      for (int i = 0; i < n; ++i) slots.mixed.push_back(hessian.slot(nx_ + nu_ + k, v[i]));
+      for (int i = 0; layout.curved && i < n; ++i) {
+        for (int j = 0; j <= i; ++j) slots.third.push_back(hessian.slot(v[i], v[j]));
+      }
+      slots_.push_back(slots);
+    }
+    jacobian_ = jacobian.pattern;
+    hessian_ = hessian.pattern;
+  }
+
+  int inputSize() const override { return nx_ + nu_ + pairs_->size(); }
+  int outputSize() const override { return nx_; }
+
+  void evaluate(const double* z, double* v) const override {
+    std::fill(v, v + nx_, 0.0);
+    for (const auto& [state, control] : pairs_->system().actuation) v[state] += z[nx_ + control];
+    pairs_->setState(z);
+    for (int k = 0; k < pairs_->size(); ++k) {
+      const double lambda = z[nx_ + nu_ + k];
+      if (lambda == 0.0) continue;
+      const Eigen::VectorXd g = pairs_->local(k).gradient();
+      const std::vector<int>& variables = pairs_->layout(k).variables;
+      for (int i = 0; i < g.size(); ++i) v[variables[i]] += lambda * g(i);
+    }
+  }
+
+  const SparsityPattern& jacobianPattern() const override { return jacobian_; }
+  void evaluateJacobian(const double* z, double* values) const override {
+    std::fill(values, values + jacobian_.nonzeros(), 0.0);
+    for (int slot : actuation_slots_) values[slot] += 1.0;
+    pairs_->setState(z);
+    for (int k = 0; k < pairs_->size(); ++k) {
+      const LocalPair local = pairs_->local(k);
+      const double lambda = z[nx_ + nu_ + k];
+      const Eigen::VectorXd g = local.gradient();
+      const Eigen::MatrixXd h = local.hessian();
+      const int n = static_cast<int>(g.size());
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) values[slots_[k].curvature[i * n + j]] += lambda * h(i, j);
+        values[slots_[k].gradient[i]] += g(i);
+      }
+    }
+  }
+
+  const SparsityPattern& hessianPattern() const override { return hessian_; }
+  void evaluateHessian(const double* z, const double* weights, double* values) const override {
+    std::fill(values, values + hessian_.nonzeros(), 0.0);
+    pairs_->setState(z);
+    for (int k = 0; k < pairs_->size(); ++k) {
+      const PairLayout& layout = pairs_->layout(k);
+      const int n = static_cast<int>(layout.variables.size());
+      Eigen::VectorXd w(n);
+      for (int i = 0; i < n; ++i) w(i) = weights[layout.variables[i]];
+      if (w.isZero(0.0)) continue;
+      const LocalPair local = pairs_->local(k);
+      const Eigen::VectorXd mixed = local.hessian() * w;  // d^2 (w . v) / d lambda_k dx
+      for (int i = 0; i < n; ++i) values[slots_[k].mixed[i]] += mixed(i);
+      const double lambda = z[nx_ + nu_ + k];
+      if (!layout.curved || lambda == 0.0) continue;
+      const Eigen::MatrixXd t = local.thirdDerivative(w);
+      int s = 0;
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j <= i; ++j) values[slots_[k].third[s++]] += lambda * t(i, j);
+      }
+    }
+  }
+
+ private:
+  struct PairSlots {
+    std::vector<int> curvature, gradient, mixed, third;
+  };
+  std::shared_ptr<const PairSet> pairs_;
+  int nx_, nu_;
+  std::vector<int> actuation_slots_;
+  std::vector<PairSlots> slots_;
+  SparsityPattern jacobian_, hessian_;
+};
+
+}  // namespace
+
+double centrePairValue(const CentreEvaluator& evaluator, const CentrePair& pair) {
+  const PairLayout layout = layoutOf(evaluator, pair);
+  return LocalPair(evaluator, pair, layout).value();
+}
+
+std::shared_ptr<const DcsModel> centrePairModel(const CentrePairSystem& system,
+                                                const std::string& name) {
+  auto pairs = std::make_shared<const PairSet>(system);
+  return std::make_shared<DcsModel>(
+      system.state_size, system.control_size, static_cast<int>(system.pairs.size()),
+      std::make_shared<CentreVelocity>(pairs), std::make_shared<CentreConstraints>(pairs), name,
+      system.constraint_scales);
+}
+
+}  // namespace fesd

@@ -1,0 +1,153 @@
+#include "fesd_trajopt/scene/robot_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "fesd_trajopt/scene/robot_guess.h"
+#include "fesd_trajopt/scene/robot_lazy_pairs.h"
+#include "fesd_trajopt/solver/stopwatch.h"
+
+namespace fesd {
+namespace {
+
+/// Distances from the targets; a success that misses one becomes kTargetNotReached.
+void judgeTargets(const RobotTask& task, RobotOutcome& outcome) {
+  const RobotScene& scene = task.scene;
+  const Eigen::VectorXd end = outcome.trajectory.finalState();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::ostringstream missed;
+  missed.precision(3);
+  outcome.joint_target_distances.assign(scene.numJoints(), nan);
+  for (int j = 0; j < scene.numJoints(); ++j) {
+    const JointTask& t = task.joints[j];
+    if (!(t.target_weight > 0.0)) continue;
+    outcome.joint_target_distances[j] = std::fabs(end(j) - t.target);
+    if (outcome.joint_target_distances[j] > targetTolerance(t.target_weight)) {
+      missed << (missed.tellp() > 0 ? "; " : "") << "joint '" << scene.robot().joints[j].name
+             << "' ends " << outcome.joint_target_distances[j] << " from its target";
+    }
+  }
+  const DiscScene& discs = scene.discs();
+  outcome.target_distances.assign(discs.bodies().size(), nan);
+  for (size_t b = 0; b < discs.bodies().size(); ++b) {
+    const BodyTask& t = task.bodies[b];
+    if (t.target.size() == 0 || !(t.target_weight > 0.0)) continue;
+    const int first = scene.bodyStateIndex(static_cast<int>(b));
+    outcome.target_distances[b] = (end.segment(first, scene.dimension()) - t.target).norm();
+    if (outcome.target_distances[b] > targetTolerance(t.target_weight)) {
+      missed << (missed.tellp() > 0 ? "; " : "") << "body '" << discs.bodies()[b].name << "' ends "
+             << outcome.target_distances[b] << " from its target";
+    }
+  }
+  if (outcome.status == SolveStatus::kSuccess && missed.tellp() > 0) {
+    outcome.status = SolveStatus::kTargetNotReached;
+    outcome.message = "target not reached: " + missed.str() + "; " + outcome.message;
+  }
+}
+
+}  // namespace
+
+double smallestBoundaryGap(const RobotScene& scene, const std::vector<RobotPair>& pairs,
+                           const Trajectory& trajectory) {
+  double gap = std::numeric_limits<double>::infinity();
+  for (const Eigen::VectorXd& x : trajectory.states) {
+    for (const RobotPair& pair : pairs) gap = std::min(gap, scene.pairGap(pair, x));
+  }
+  return gap;
+}
+
+RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
+                            const RobotSolveOptions& options) {
+  RobotOutcome outcome;
+  outcome.invalid = validateRobotTask(task, limits);
+  if (!outcome.invalid.empty()) return outcome;
+  outcome.decisions = decideRobotPairs(task);
+  std::vector<RobotPair> candidates;
+  for (const RobotPairDecision& decision : outcome.decisions) {
+    if (decision.modelled) candidates.push_back(decision.pair);
+  }
+  const int elements = options.ocp.discretization.num_elements;
+  const RobotGuess guess = planRobotGuess(task, candidates, elements);
+  outcome.pusher_sphere = guess.pusher_sphere;
+  if (options.lazy_pairs) {
+    const std::vector<bool> needed = robotPairsTheGuessNeeds(
+        task, candidates, guess.guess, options.pair_margin, 16 * task.num_intervals);
+    size_t k = 0;
+    for (RobotPairDecision& decision : outcome.decisions) {
+      if (!decision.modelled) continue;
+      decision.modelled = needed[k];
+      decision.checked = !needed[k];
+      decision.reason = needed[k] ? "called for by the first guess" : "checked on the solution";
+      ++k;
+    }
+  }
+  Stopwatch stopwatch;
+  Trajectory previous_round;
+  std::vector<RobotPair> previous_pairs;
+  for (int round = 1;; ++round) {
+    outcome.modelled.clear();
+    for (const RobotPairDecision& decision : outcome.decisions) {
+      if (decision.modelled) outcome.modelled.push_back(decision.pair);
+    }
+    const OcpDefinition ocp = buildRobotOcp(task, outcome.modelled);
+    OcpOptions ocp_options = options.ocp;
+    ocp_options.homotopy.wall_time_budget =
+        std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
+    OcpSolver solver(ocp, ocp_options);
+    // The guess's multipliers belong to the candidates; the NLP's to the modelled pairs.
+    TrajectoryGuess round_guess = planRobotGuess(task, outcome.modelled, elements).guess;
+    OcpSolution solution =
+        round == 1
+            ? solver.solve(round_guess)
+            : solver.solve(trajectoryForPairs(previous_round, previous_pairs, outcome.modelled),
+                           round_guess);
+    if (round > 1) solution.report.addEffort(outcome.report);
+    outcome.status = solution.status;
+    outcome.message = solution.message;
+    outcome.trajectory = solution.trajectory;
+    outcome.report = solution.report;
+    outcome.pair_rounds = round;
+    if (outcome.trajectory.states.empty() || outcome.status != SolveStatus::kSuccess) break;
+    previous_round = outcome.trajectory;
+    previous_pairs = outcome.modelled;
+    // Checked pairs that came within the margin along the solution are modelled next round.
+    const std::vector<Eigen::VectorXd> path = densePath(outcome.trajectory);
+    bool added = false;
+    for (RobotPairDecision& decision : outcome.decisions) {
+      if (!decision.checked) continue;
+      const double gap = smallestPathGaps(task.scene, {decision.pair}, path)[0];
+      if (gap >= options.pair_margin * robotPairSize(task.scene, decision.pair)) continue;
+      decision.modelled = true;
+      decision.checked = false;
+      decision.reason = "modelled from round " + std::to_string(round + 1);
+      added = true;
+    }
+    if (!added) break;
+  }
+  if (outcome.trajectory.states.empty()) return outcome;
+  outcome.boundary_gap = smallestBoundaryGap(task.scene, outcome.modelled, outcome.trajectory);
+  judgeTargets(task, outcome);
+  if (options.verify && outcome.status != SolveStatus::kCancelled) {
+    SimulationOptions fine;
+    fine.discretization = options.verification;
+    const DiscretizationOptions& solved = options.ocp.discretization;
+    fine.discretization.num_stages = std::max(fine.discretization.num_stages, solved.num_stages);
+    fine.discretization.num_elements =
+        std::max(fine.discretization.num_elements, 2 * solved.num_elements);
+    fine.wall_time_budget =
+        std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
+    const SimulationResult result =
+        resimulate(buildRobotOcp(task, outcome.modelled), outcome.trajectory.controls, fine);
+    if (result.status == SolveStatus::kSuccess) {
+      outcome.verification_error =
+          (result.trajectory.finalState() - outcome.trajectory.finalState()).norm();
+      outcome.verification_gap = smallestBoundaryGap(task.scene, candidates, result.trajectory);
+    } else {
+      outcome.verification_error = std::numeric_limits<double>::infinity();
+    }
+  }
+  return outcome;
+}
+
+}  // namespace fesd

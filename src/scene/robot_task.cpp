@@ -1,0 +1,284 @@
+#include "fesd_trajopt/scene/robot_task.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "fesd_trajopt/function/quadratic_function.h"
+#include "fesd_trajopt/kinematics/reach.h"
+#include "fesd_trajopt/nlp/nlp_assembly.h"
+
+namespace fesd {
+namespace {
+
+constexpr double kInf = NlpAssembly::kInfinity;
+
+std::string formatNumber(double value) {
+  std::ostringstream out;
+  out.precision(3);
+  out << value;
+  return out.str();
+}
+
+std::string vectorProblem(const Eigen::VectorXd& v, int dimension, double max_coordinate) {
+  if (v.size() != dimension) {
+    return "has " + std::to_string(v.size()) + " coordinates, the scene " +
+           std::to_string(dimension);
+  }
+  if (!v.allFinite()) return "is not finite";
+  if (v.cwiseAbs().maxCoeff() > max_coordinate) return "is beyond the coordinate limit";
+  return "";
+}
+
+/// |u_max| over every control coordinate at its bound.
+double controlNorm(const RobotTask& task) {
+  double squared = 0.0;
+  for (int j = 0; j < task.scene.numJoints(); ++j) {
+    squared += jointSpeedLimit(task, j) * jointSpeedLimit(task, j);
+  }
+  const DiscScene& discs = task.scene.discs();
+  for (size_t b = 0; b < discs.bodies().size(); ++b) {
+    if (discs.bodies()[b].actuated) {
+      squared += discs.dimension() * task.bodies[b].max_speed * task.bodies[b].max_speed;
+    }
+  }
+  return std::sqrt(squared);
+}
+
+/// A lower bound on the gap between the pair's surfaces during the task.
+double separationBound(const RobotTask& task, const RobotPair& pair,
+                       const std::vector<double>& reach) {
+  const RobotScene& scene = task.scene;
+  if (pair.kind == RobotPair::Kind::kWall)
+    return scene.pairGap(pair, scene.initialState()) - reach[pair.body];
+  const double other_reach = pair.kind == RobotPair::Kind::kBody ? reach[pair.other] : 0.0;
+  return scene.pairGap(pair, scene.initialState()) - reach[pair.body] - other_reach;
+}
+
+}  // namespace
+
+double jointSpeedLimit(const RobotTask& task, int joint) {
+  if (task.joints[joint].max_velocity > 0.0) return task.joints[joint].max_velocity;
+  const double urdf = task.scene.robot().joints[joint].max_velocity;
+  return urdf > 0.0 ? urdf : task.default_joint_velocity;
+}
+
+std::pair<double, double> jointBounds(const RobotTask& task, int joint) {
+  const JointTask& t = task.joints[joint];
+  if (t.has_bounds) return {t.lower, t.upper};
+  const KinematicJoint& j = task.scene.robot().joints[joint];
+  return {j.lower, j.upper};
+}
+
+std::string validateRobotTask(const RobotTask& task, const TaskLimits& limits) {
+  const RobotScene& scene = task.scene;
+  const DiscScene& discs = scene.discs();
+  const int dim = scene.dimension();
+  if (dim != 2 && dim != 3) return "the scene must be planar (2) or spatial (3)";
+  if (static_cast<int>(scene.robot().spheres.size()) > limits.max_spheres) {
+    return "too many collision spheres: " + std::to_string(scene.robot().spheres.size()) + " > " +
+           std::to_string(limits.max_spheres);
+  }
+  if (static_cast<int>(discs.bodies().size()) > limits.max_bodies) {
+    return "too many bodies (limit " + std::to_string(limits.max_bodies) + ")";
+  }
+  if (static_cast<int>(discs.obstacles().size()) > limits.max_obstacles) {
+    return "too many obstacles (limit " + std::to_string(limits.max_obstacles) + ")";
+  }
+  if (static_cast<int>(discs.walls().size()) > limits.max_walls) {
+    return "too many walls (limit " + std::to_string(limits.max_walls) + ")";
+  }
+  if (!scene.robot().free_links.empty()) {
+    return "link '" + scene.robot().free_links.front().link +
+           "' is on a planar or floating joint: robots with free links are not supported yet";
+  }
+  if (static_cast<int>(task.joints.size()) != scene.numJoints()) {
+    return "one joint task per robot coordinate is needed";
+  }
+  if (task.bodies.size() != discs.bodies().size()) return "one body task per body is needed";
+  if (!(task.horizon > 0.0) || !std::isfinite(task.horizon) || task.horizon > limits.max_horizon) {
+    return "the horizon must be in (0, " + formatNumber(limits.max_horizon) + "], got " +
+           formatNumber(task.horizon);
+  }
+  if (task.num_intervals < 1 || task.num_intervals > limits.max_intervals) {
+    return "the number of control intervals must be in 1.." + std::to_string(limits.max_intervals);
+  }
+  if (!(task.control_weight >= 0.0) || !std::isfinite(task.control_weight)) {
+    return "the control weight must be finite and >= 0";
+  }
+  if (!(task.default_joint_velocity > 0.0) || !std::isfinite(task.default_joint_velocity)) {
+    return "the default joint velocity must be finite and > 0";
+  }
+  for (int j = 0; j < scene.numJoints(); ++j) {
+    const JointTask& t = task.joints[j];
+    const std::string who = "joint '" + scene.robot().joints[j].name + "'";
+    const double q0 = scene.initialJoints()(j);
+    if (!std::isfinite(q0)) return who + ": the initial position is not finite";
+    if (!(t.max_velocity >= 0.0) || !std::isfinite(t.max_velocity)) {
+      return who + ": the velocity bound must be finite and >= 0";
+    }
+    if (!std::isfinite(t.target) || !(t.target_weight >= 0.0) || !std::isfinite(t.target_weight)) {
+      return who + ": the target and its weight must be finite (weight >= 0)";
+    }
+    if (t.has_bounds && (std::isnan(t.lower) || std::isnan(t.upper) || t.lower > t.upper)) {
+      return who + ": the bounds are NaN or contradictory (lower > upper)";
+    }
+    const auto [lower, upper] = jointBounds(task, j);
+    if (q0 < lower || q0 > upper) {
+      return who + " starts at " + formatNumber(q0) + ", outside its bounds [" +
+             formatNumber(lower) + ", " + formatNumber(upper) + "]";
+    }
+  }
+  std::set<std::string> names;
+  for (size_t b = 0; b < discs.bodies().size(); ++b) {
+    const SceneBody& body = discs.bodies()[b];
+    const BodyTask& t = task.bodies[b];
+    const std::string who = "body '" + body.name + "'";
+    if (!names.insert(body.name).second) return "two bodies are named '" + body.name + "'";
+    if (!(body.radius > 0.0) || !std::isfinite(body.radius)) {
+      return who + " has radius " + formatNumber(body.radius) + " (must be > 0 and finite)";
+    }
+    std::string problem = vectorProblem(body.position, dim, limits.max_coordinate);
+    if (!problem.empty()) return who + ": the initial position " + problem;
+    if (!(t.max_speed >= 0.0) || !std::isfinite(t.max_speed)) {
+      return who + ": the speed bound must be finite and >= 0";
+    }
+    if (t.target.size()) {
+      problem = vectorProblem(t.target, dim, limits.max_coordinate);
+      if (!problem.empty()) return who + ": the target " + problem;
+    }
+    if (!(t.target_weight >= 0.0) || !std::isfinite(t.target_weight)) {
+      return who + ": the target weight must be finite and >= 0";
+    }
+    if (t.target_weight > 0.0 && t.target.size() == 0) return who + " has a weight but no target";
+    if (t.workspace_lower.size() || t.workspace_upper.size()) {
+      return who + ": workspace bounds are not supported in robot scenes";
+    }
+  }
+  for (const SceneObstacle& o : discs.obstacles()) {
+    if (!(o.radius > 0.0) || !std::isfinite(o.radius)) {
+      return "obstacle '" + o.name + "' has radius " + formatNumber(o.radius) +
+             " (must be > 0 and finite)";
+    }
+    const std::string problem = vectorProblem(o.position, dim, limits.max_coordinate);
+    if (!problem.empty()) return "obstacle '" + o.name + "': the position " + problem;
+  }
+  for (const SceneWall& w : discs.walls()) {
+    if (w.normal.size() != dim || !w.normal.allFinite() ||
+        std::fabs(w.normal.norm() - 1.0) > 1e-9 || !std::isfinite(w.offset)) {
+      return "wall '" + w.name + "' needs a finite unit normal with " + std::to_string(dim) +
+             " coordinates and a finite offset";
+    }
+  }
+  const Eigen::VectorXd x0 = scene.initialState();
+  for (const RobotPair& pair : scene.allPairs()) {
+    if (scene.pairGap(pair, x0) < -1e-9) return scene.pairName(pair) + " overlap at the start";
+  }
+  return "";
+}
+
+std::vector<double> collisionReach(const RobotTask& task) {
+  const RobotScene& scene = task.scene;
+  const double travel = task.horizon * controlNorm(task);
+  const std::vector<CollisionBody>& bodies = scene.collisionBodies();
+  std::vector<double> reach(bodies.size(), 0.0);
+  const Eigen::VectorXd joint_speeds =
+      Eigen::VectorXd::Constant(scene.numJoints(), controlNorm(task));
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].sphere >= 0) {
+      reach[i] = sphereReachBound(scene.robot(), bodies[i].sphere, joint_speeds, task.horizon);
+    } else if (scene.discs().bodies()[i].actuated) {
+      reach[i] = travel;
+    }
+  }
+  const Eigen::VectorXd x0 = scene.initialState();
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const RobotPair& pair : scene.allPairs()) {
+      if (pair.kind != RobotPair::Kind::kBody) continue;
+      for (const auto& [mover, still] :
+           {std::make_pair(pair.body, pair.other), std::make_pair(pair.other, pair.body)}) {
+        if (reach[mover] == 0.0 || reach[still] > 0.0 || bodies[still].sphere >= 0) continue;
+        if (scene.pairGap(pair, x0) - reach[mover] > 0.0) continue;
+        reach[still] = travel;
+        grew = true;
+      }
+    }
+  }
+  return reach;
+}
+
+std::vector<RobotPairDecision> decideRobotPairs(const RobotTask& task) {
+  const std::vector<double> reach = collisionReach(task);
+  std::vector<RobotPairDecision> decisions;
+  for (const RobotPair& pair : task.scene.allPairs()) {
+    const bool moves =
+        reach[pair.body] > 0.0 || (pair.kind == RobotPair::Kind::kBody && reach[pair.other] > 0.0);
+    if (!moves) {
+      decisions.push_back({pair, false, "neither side can move"});
+      continue;
+    }
+    const double separation = separationBound(task, pair, reach);
+    if (separation > 0.0) {
+      decisions.push_back({pair, false,
+                           "cannot touch within the horizon: reachable sets stay " +
+                               formatNumber(separation) + " apart"});
+    } else {
+      decisions.push_back({pair, true, "can touch within the horizon"});
+    }
+  }
+  return decisions;
+}
+
+OcpDefinition buildRobotOcp(const RobotTask& task, const std::vector<RobotPair>& modelled) {
+  const RobotScene& scene = task.scene;
+  const DiscScene& discs = scene.discs();
+  const int dim = scene.dimension(), nx = scene.stateSize(), nu = scene.controlSize();
+  const int nq = scene.numJoints();
+  OcpDefinition ocp;
+  ocp.model = scene.model(modelled);
+  ocp.initial_state = scene.initialState();
+  ocp.horizon = task.horizon;
+  ocp.num_intervals = task.num_intervals;
+  ocp.control_lower = Eigen::VectorXd::Zero(nu);
+  ocp.control_upper = Eigen::VectorXd::Zero(nu);
+  ocp.state_lower = Eigen::VectorXd::Constant(nx, -kInf);
+  ocp.state_upper = Eigen::VectorXd::Constant(nx, kInf);
+  Eigen::VectorXd terminal_weights = Eigen::VectorXd::Zero(nx), targets = ocp.initial_state;
+  for (int j = 0; j < nq; ++j) {
+    ocp.control_lower(j) = -jointSpeedLimit(task, j);
+    ocp.control_upper(j) = jointSpeedLimit(task, j);
+    const auto [lower, upper] = jointBounds(task, j);
+    ocp.state_lower(j) = std::max(lower, -kInf);
+    ocp.state_upper(j) = std::min(upper, kInf);
+    if (task.joints[j].target_weight > 0.0) {
+      terminal_weights(j) = task.joints[j].target_weight;
+      targets(j) = task.joints[j].target;
+    }
+  }
+  for (int b = 0; b < static_cast<int>(discs.bodies().size()); ++b) {
+    const BodyTask& t = task.bodies[b];
+    if (discs.bodies()[b].actuated) {
+      const int first = nq + discs.controlIndex(b);
+      ocp.control_lower.segment(first, dim).setConstant(-t.max_speed);
+      ocp.control_upper.segment(first, dim).setConstant(t.max_speed);
+    }
+    if (t.target.size() && t.target_weight > 0.0) {
+      terminal_weights.segment(scene.bodyStateIndex(b), dim).setConstant(t.target_weight);
+      targets.segment(scene.bodyStateIndex(b), dim) = t.target;
+    }
+  }
+  if (task.control_weight > 0.0) {
+    Eigen::VectorXd weights = Eigen::VectorXd::Zero(nx + nu);
+    weights.tail(nu).setConstant(task.control_weight);
+    ocp.lagrange_cost =
+        QuadraticFunction::weightedDistance(weights, Eigen::VectorXd::Zero(nx + nu));
+  }
+  if ((terminal_weights.array() != 0.0).any()) {
+    ocp.mayer_cost = QuadraticFunction::weightedDistance(terminal_weights, targets);
+  }
+  return ocp;
+}
+
+}  // namespace fesd

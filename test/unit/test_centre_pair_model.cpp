@@ -1,0 +1,96 @@
+// The DCS of centre pairs (scene/centre_pair_model.cpp): the velocity's Jacobian and the Hessian
+// of w . v (which holds the third derivatives of the sphere centres) and the constraints'
+// derivatives against central differences, for every pair kind, planar and spatial.
+#include <memory>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "fesd_trajopt/scene/centre_pair_model.h"
+#include "support/finite_differences.h"
+#include "support/robot_files.h"
+
+namespace {
+
+using fesd::CentrePair;
+using fesd::CollisionCentre;
+
+/// A robot (q first) and two free bodies (the first actuated) with a pair of every kind: sphere
+/// and body, sphere and sphere, sphere and point, sphere and wall, body and body, body and wall.
+fesd::CentrePairSystem mixedSystem(const std::string& robot_file, int dimension) {
+  fesd::CentrePairSystem system;
+  system.robot =
+      std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot(robot_file));
+  system.dimension = dimension;
+  const int nq = system.robot->numCoordinates();
+  const int spheres = static_cast<int>(system.robot->spheres.size());
+  system.state_size = nq + 2 * dimension;
+  system.control_size = nq + dimension;
+  for (int j = 0; j < nq; ++j) system.actuation.emplace_back(j, j);
+  for (int d = 0; d < dimension; ++d) system.actuation.emplace_back(nq + d, nq + d);
+  const CollisionCentre body0{CollisionCentre::Source::kFreeBody, nq};
+  const CollisionCentre body1{CollisionCentre::Source::kFreeBody, nq + dimension};
+  const CollisionCentre tip{CollisionCentre::Source::kRobotSphere, spheres - 1};
+  const CollisionCentre middle{CollisionCentre::Source::kRobotSphere, spheres / 2};
+  const Eigen::Vector3d normal =
+      Eigen::Vector3d(0.3, -0.5, dimension == 3 ? 0.8 : 0.0).normalized();
+  system.pairs = {
+      {CentrePair::Kind::kCentre, tip, body1, Eigen::Vector3d::Zero(), 0.01},
+      {CentrePair::Kind::kCentre, middle, tip, Eigen::Vector3d::Zero(), 0.02},
+      {CentrePair::Kind::kPoint, middle, {}, Eigen::Vector3d(0.2, 0.1, 0.3), 0.03},
+      {CentrePair::Kind::kWall, tip, {}, normal, 0.1},
+      {CentrePair::Kind::kCentre, body0, body1, Eigen::Vector3d::Zero(), 0.04},
+      {CentrePair::Kind::kWall, body1, {}, normal, -0.2},
+  };
+  system.constraint_scales = Eigen::VectorXd::Ones(system.pairs.size());
+  return system;
+}
+
+class CentrePairDerivatives : public ::testing::TestWithParam<std::pair<const char*, int>> {};
+
+TEST_P(CentrePairDerivatives, VelocityAndConstraintsAgainstFiniteDifferences) {
+  const fesd::CentrePairSystem system = mixedSystem(GetParam().first, GetParam().second);
+  const auto model = fesd::centrePairModel(system, "test");
+  ASSERT_EQ(model->constraintSize(), 6);
+  std::mt19937 random(41);
+  for (int trial = 0; trial < 5; ++trial) {
+    const Eigen::VectorXd z = fesd_test::randomVector(model->velocity()->inputSize(), random);
+    const auto velocity = fesd_test::checkAgainstFiniteDifferences(
+        *model->velocity(), z, fesd_test::randomVector(system.state_size, random));
+    EXPECT_LT(velocity.jacobian, fesd_test::kTolerance);
+    EXPECT_LT(velocity.hessian, fesd_test::kTolerance);
+    const Eigen::VectorXd x = z.head(system.state_size);
+    const auto constraints = fesd_test::checkAgainstFiniteDifferences(
+        *model->constraints(), x, fesd_test::randomVector(6, random));
+    EXPECT_LT(constraints.jacobian, fesd_test::kTolerance);
+    EXPECT_LT(constraints.hessian, fesd_test::kTolerance);
+    // The Hessian of w . v is not the quadratic model's constant: it holds third derivatives.
+    const Eigen::VectorXd w = fesd_test::randomVector(system.state_size, random);
+    EXPECT_GT(fesd_test::exactHessian(*model->velocity(), z, w)
+                  .topLeftCorner(system.state_size, system.state_size)
+                  .norm(),
+              1e-3);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Robots, CentrePairDerivatives,
+                         ::testing::Values(std::make_pair("planar_arm.urdf", 2),
+                                           std::make_pair("panda_spherized.urdf", 3)));
+
+TEST(CentrePairModel, ValuesAreTheGeometricOnes) {
+  const fesd::CentrePairSystem system = mixedSystem("planar_arm.urdf", 2);
+  const auto model = fesd::centrePairModel(system, "test");
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(system.state_size);
+  const int nq = 3;
+  x.segment(nq, 2) << 1.0, 2.0;      // body 0
+  x.segment(nq + 2, 2) << 0.5, 0.0;  // body 1
+  Eigen::VectorXd c(6);
+  model->constraints()->evaluate(x.data(), c.data());
+  // At q = 0 the arm lies along x: its last sphere (hand/sphere_1) at 0.9.
+  EXPECT_NEAR(c(0), 0.4 * 0.4 - 0.01, 1e-12);
+  EXPECT_NEAR(c(4), 0.5 * 0.5 + 4.0 - 0.04, 1e-12);
+  const Eigen::Vector3d n = system.pairs[3].point;
+  EXPECT_NEAR(c(3), n.x() * 0.9 - 0.1, 1e-12);
+}
+
+}  // namespace

@@ -1,0 +1,101 @@
+// Collision centres (scene/collision_centres.cpp): a robot sphere's centre and its first, second
+// and third derivatives in its chain's coordinates against central differences, a free body's
+// centre as the state itself, and the plane's projection.
+#include <memory>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "fesd_trajopt/scene/collision_centres.h"
+#include "support/finite_differences.h"
+#include "support/robot_files.h"
+
+namespace {
+
+using fesd::CentreEvaluator;
+using fesd::CollisionCentre;
+
+std::shared_ptr<const fesd::KinematicModel> panda() {
+  return std::make_shared<const fesd::KinematicModel>(
+      fesd_test::loadShippedRobot("panda_spherized.urdf"));
+}
+
+/// x with q in [-1, 1] and one free body after the robot's coordinates.
+Eigen::VectorXd randomState(int nq, std::mt19937& random) {
+  return fesd_test::randomVector(nq + 3, random);
+}
+
+TEST(CollisionCentres, RobotSphereDerivativesAgainstFiniteDifferences) {
+  const auto robot = panda();
+  const int nq = robot->numCoordinates();
+  std::mt19937 random(5);
+  CentreEvaluator evaluator(robot, 3);
+  // Spheres on the third link and below, off their joints' axes: every derivative is nonzero.
+  for (int sphere : {20, 40, static_cast<int>(robot->spheres.size()) - 1}) {
+    const CollisionCentre centre{CollisionCentre::Source::kRobotSphere, sphere};
+    const std::vector<int> variables = evaluator.variables(centre);
+    ASSERT_GE(variables.size(), 3u) << robot->spheres[sphere].name;
+    Eigen::VectorXd x = randomState(nq, random);
+    const Eigen::Vector3d w = fesd_test::randomVector(3, random);
+    const Eigen::VectorXd v = fesd_test::randomVector(static_cast<int>(variables.size()), random);
+    // Functions of the centre's local variables, everything else held at x.
+    const auto at = [&](const Eigen::VectorXd& local) {
+      Eigen::VectorXd moved = x;
+      for (size_t i = 0; i < variables.size(); ++i) moved(variables[i]) = local(i);
+      return moved;
+    };
+    Eigen::VectorXd local(variables.size());
+    for (size_t i = 0; i < variables.size(); ++i) local(i) = x(variables[i]);
+    const auto position = [&](const Eigen::VectorXd& l) -> Eigen::VectorXd {
+      const Eigen::VectorXd moved = at(l);
+      CentreEvaluator e(robot, 3);
+      e.setState(moved.data());
+      return e.position(centre);
+    };
+    const auto weighted_gradient = [&](const Eigen::VectorXd& l) -> Eigen::VectorXd {
+      const Eigen::VectorXd moved = at(l);
+      CentreEvaluator e(robot, 3);
+      e.setState(moved.data());
+      return e.jacobian(centre).transpose() * w;
+    };
+    const auto hessian_along_v = [&](const Eigen::VectorXd& l) -> Eigen::VectorXd {
+      const Eigen::VectorXd moved = at(l);
+      CentreEvaluator e(robot, 3);
+      e.setState(moved.data());
+      return e.weightedHessian(centre, w) * v;
+    };
+    evaluator.setState(x.data());
+    const Eigen::MatrixXd jacobian = evaluator.jacobian(centre);
+    EXPECT_LT((jacobian - fesd_test::finiteDifferenceJacobian(position, local)).norm(), 1e-7);
+    const Eigen::MatrixXd hessian = evaluator.weightedHessian(centre, w);
+    EXPECT_LT((hessian - fesd_test::finiteDifferenceJacobian(weighted_gradient, local)).norm(),
+              1e-7);
+    // d/dx (H[w] v) = T[w, v] (symmetric in its indices): column k of the difference quotient of
+    // H[w] v is T[w, e_k] v, which equals T[w, v] e_k.
+    const Eigen::MatrixXd third = evaluator.weightedThirdDerivative(centre, w, v);
+    EXPECT_LT((third - fesd_test::finiteDifferenceJacobian(hessian_along_v, local)).norm(), 1e-7);
+    EXPECT_GT(third.norm(), 1e-3) << robot->spheres[sphere].name;  // something to compare
+  }
+}
+
+TEST(CollisionCentres, FreeBodyIsItsStateAndPlanarScenesDropZ) {
+  const auto robot = panda();
+  const int nq = robot->numCoordinates();
+  std::mt19937 random(6);
+  const Eigen::VectorXd x = randomState(nq, random);
+  const CollisionCentre body{CollisionCentre::Source::kFreeBody, nq};
+  CentreEvaluator spatial(robot, 3), planar(robot, 2);
+  spatial.setState(x.data());
+  planar.setState(x.data());
+  EXPECT_EQ(spatial.position(body), Eigen::Vector3d(x.tail(3)));
+  EXPECT_EQ(spatial.variables(body), (std::vector<int>{nq, nq + 1, nq + 2}));
+  EXPECT_EQ(planar.variables(body), (std::vector<int>{nq, nq + 1}));
+  EXPECT_EQ(planar.position(body), Eigen::Vector3d(x(nq), x(nq + 1), 0.0));
+  const CollisionCentre sphere{CollisionCentre::Source::kRobotSphere, 30};
+  EXPECT_EQ(planar.position(sphere).z(), 0.0);
+  EXPECT_EQ(planar.jacobian(sphere).row(2).norm(), 0.0);
+  EXPECT_EQ(planar.position(sphere).head(2), spatial.position(sphere).head(2));
+  EXPECT_EQ(spatial.weightedHessian(body, Eigen::Vector3d::Ones()).norm(), 0.0);
+}
+
+}  // namespace

@@ -1,0 +1,177 @@
+// Robots in scenes (scene/robot_scene.cpp): the state's layout, which pairs exist (spheres on
+// one link never pair, self-collision only on request between non-adjacent links, SRDF pairs
+// left out, a sphere fixed to the world only against free bodies), pair names and gaps, and the
+// analytic check: the shoulder turning at constant speed meets a post when and where geometry
+// says, to 1e-8.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <gtest/gtest.h>
+
+#include "fesd_trajopt/integrator/fesd_integrator.h"
+#include "fesd_trajopt/kinematics/srdf.h"
+#include "fesd_trajopt/scene/robot_scene.h"
+#include "support/robot_files.h"
+
+namespace {
+
+using fesd::RobotPair;
+using fesd::RobotScene;
+
+std::shared_ptr<const fesd::KinematicModel> shipped(const std::string& name) {
+  return std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot(name));
+}
+
+/// The planar arm at q = 0 with a passive disc, a post and a wall.
+RobotScene armScene() {
+  fesd::DiscScene discs(2);
+  discs.bodies().push_back({"disc", 0.05, Eigen::Vector2d(0.6, 0.3), false});
+  discs.obstacles().push_back({"post", 0.05, Eigen::Vector2d(-0.5, 0.5)});
+  discs.walls().push_back({"floor", Eigen::Vector2d(0.0, 1.0), -1.0});
+  return RobotScene(shipped("planar_arm.urdf"), Eigen::Vector3d::Zero(), discs);
+}
+
+std::vector<std::string> pairNames(const RobotScene& scene) {
+  std::vector<std::string> names;
+  for (const RobotPair& pair : scene.allPairs()) names.push_back(scene.pairName(pair));
+  return names;
+}
+
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+TEST(RobotScene, StateIsJointsThenBodies) {
+  const RobotScene scene = armScene();
+  EXPECT_EQ(scene.stateSize(), 3 + 2);
+  EXPECT_EQ(scene.controlSize(), 3);
+  EXPECT_EQ(scene.bodyStateIndex(0), 3);
+  EXPECT_EQ(scene.initialState(), (Eigen::VectorXd(5) << 0, 0, 0, 0.6, 0.3).finished());
+  ASSERT_EQ(scene.collisionBodies().size(), 1u + 9u);
+  EXPECT_EQ(scene.collisionBodies()[0].name, "disc");
+  EXPECT_EQ(scene.collisionBodies()[scene.sphereBody(8)].name, "hand/sphere_1");
+}
+
+TEST(RobotScene, PairsOfEveryKindButNoSelfCollisionByDefault) {
+  const RobotScene scene = armScene();
+  const std::vector<std::string> names = pairNames(scene);
+  EXPECT_TRUE(contains(names, "disc/hand/sphere_1"));
+  EXPECT_TRUE(contains(names, "disc/base/sphere_0"));  // the base is an obstacle to the disc
+  EXPECT_TRUE(contains(names, "hand/sphere_1/post"));
+  EXPECT_TRUE(contains(names, "hand/sphere_1/floor"));
+  EXPECT_FALSE(contains(names, "base/sphere_0/post"));  // fixed to the world: never moves
+  EXPECT_FALSE(contains(names, "upper_arm/sphere_0/hand/sphere_1"));
+  // 9 spheres and the disc; 8 moving spheres with the post and the floor; the disc's own two.
+  EXPECT_EQ(names.size(), 9u + 8u * 2u + 2u);
+}
+
+TEST(RobotScene, SelfCollisionOnlyBetweenNonAdjacentLinksNotDisabled) {
+  RobotScene scene = armScene();
+  scene.self_collision = true;
+  std::vector<std::string> names = pairNames(scene);
+  EXPECT_TRUE(contains(names, "upper_arm/sphere_0/hand/sphere_1"));
+  EXPECT_FALSE(contains(names, "upper_arm/sphere_0/upper_arm/sphere_1"));  // same link
+  EXPECT_FALSE(contains(names, "upper_arm/sphere_2/forearm/sphere_0"));    // adjacent
+  EXPECT_FALSE(contains(names, "forearm/sphere_0/hand/sphere_0"));         // adjacent
+  // The base (fixed to the world) and the forearm are not adjacent; 0.06 + 0.045 < 0.4 apart.
+  EXPECT_TRUE(contains(names, "base/sphere_0/forearm/sphere_0"));
+  // base/upper_arm adjacent: upper_arm's joint has no parent joint, the base none at all.
+  EXPECT_FALSE(contains(names, "base/sphere_0/upper_arm/sphere_0"));
+  scene.disabled_link_pairs.emplace_back("hand", "upper_arm");
+  names = pairNames(scene);
+  EXPECT_FALSE(contains(names, "upper_arm/sphere_0/hand/sphere_1"));
+  EXPECT_TRUE(contains(names, "base/sphere_0/hand/sphere_1"));
+}
+
+TEST(RobotScene, GapsAreDistancesBetweenSurfaces) {
+  const RobotScene scene = armScene();
+  const Eigen::VectorXd x0 = scene.initialState();
+  for (const RobotPair& pair : scene.allPairs()) {
+    if (scene.pairName(pair) == "disc/hand/sphere_1") {
+      EXPECT_NEAR(scene.pairGap(pair, x0), std::hypot(0.3, 0.3) - 0.08, 1e-12);
+    }
+    if (scene.pairName(pair) == "hand/sphere_1/floor") {
+      EXPECT_NEAR(scene.pairGap(pair, x0), 1.0 - 0.03, 1e-12);
+    }
+  }
+}
+
+TEST(RobotScene, ShoulderTurningAtConstantSpeedMeetsThePostAtTheComputedTime) {
+  // At q = 0 the arm lies along x with its tip sphere (radius 0.03) at 0.9. The shoulder turning
+  // at omega sweeps it along the circle of radius 0.9; a post of radius 0.05 on that circle at
+  // angle phi is met when the chord between them is 0.08: theta* = phi - 2 asin(0.08 / 1.8).
+  const double omega = 0.5, phi = 0.6, radius = 0.9, radii = 0.03 + 0.05;
+  fesd::DiscScene discs(2);
+  discs.obstacles().push_back(
+      {"post", 0.05, Eigen::Vector2d(radius * std::cos(phi), radius * std::sin(phi))});
+  const RobotScene scene(shipped("planar_arm.urdf"), Eigen::Vector3d::Zero(), discs);
+  std::vector<RobotPair> pairs;
+  int tip_pair = -1;
+  for (const RobotPair& pair : scene.allPairs()) {
+    if (scene.pairName(pair) == "hand/sphere_1/post") tip_pair = static_cast<int>(pairs.size());
+    pairs.push_back(pair);
+  }
+  ASSERT_GE(tip_pair, 0);
+  fesd::SimulationOptions options;
+  options.discretization.num_elements = 3;
+  fesd::FesdIntegrator integrator(scene.model(pairs), options);
+  const double horizon = 2.0;
+  const fesd::SimulationResult result =
+      integrator.simulate(scene.initialState(), horizon, 4, {Eigen::Vector3d(omega, 0.0, 0.0)});
+  ASSERT_EQ(result.status, fesd::SolveStatus::kSuccess) << result.message;
+  const double contact_angle = phi - 2.0 * std::asin(radii / (2.0 * radius));
+  const double expected_time = contact_angle / omega;
+  int contacts = 0;
+  for (const fesd::SwitchEvent& event : result.trajectory.switches) {
+    if (event.kind != fesd::SwitchEvent::Kind::kContact) continue;
+    ++contacts;
+    EXPECT_EQ(event.constraint, tip_pair) << scene.pairName(pairs[event.constraint]);
+    EXPECT_NEAR(event.time, expected_time, 1e-8);
+    const Eigen::VectorXd& x = result.trajectory.states[event.element];
+    EXPECT_NEAR(x(0), contact_angle, 1e-8);
+    EXPECT_NEAR(scene.pairGap(pairs[tip_pair], x), 0.0, 1e-8);
+  }
+  EXPECT_EQ(contacts, 1);
+  // Afterwards the arm stays out of the post at every element boundary.
+  for (const Eigen::VectorXd& x : result.trajectory.states) {
+    EXPECT_GT(scene.pairGap(pairs[tip_pair], x), -1e-8);
+  }
+}
+
+}  // namespace
+
+namespace {
+
+TEST(RobotScene, SrdfDisabledPairsLeaveSelfCollisionOfThePanda) {
+  fesd::DiscScene discs(3);
+  const Eigen::VectorXd ready =
+      (Eigen::VectorXd(7) << 0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785).finished();
+  RobotScene scene(shipped("panda_spherized.urdf"), ready, discs);
+  EXPECT_TRUE(pairNames(scene).empty());  // nothing else in the scene, no self-collision
+  scene.self_collision = true;
+  const size_t all_self = scene.allPairs().size();
+  EXPECT_GT(all_self, 0u);
+  const fesd::SrdfDisabledCollisions srdf =
+      fesd::disabledCollisionsFromSrdf(fesd_test::readRobotFile("panda.srdf"));
+  ASSERT_EQ(srdf.error, "");
+  scene.disabled_link_pairs = srdf.pairs;
+  const std::vector<RobotPair> kept = scene.allPairs();
+  EXPECT_LT(kept.size(), all_self);
+  const Eigen::VectorXd x0 = scene.initialState();
+  for (const RobotPair& pair : kept) {
+    const auto link = [&](int body) {
+      return scene.robot()
+          .links[scene.robot().spheres[scene.collisionBodies()[body].sphere].link]
+          .name;
+    };
+    for (const auto& [a, b] : srdf.pairs) {
+      EXPECT_FALSE((link(pair.body) == a && link(pair.other) == b) ||
+                   (link(pair.body) == b && link(pair.other) == a))
+          << scene.pairName(pair);
+    }
+    EXPECT_GE(scene.pairGap(pair, x0), 0.0) << scene.pairName(pair);
+  }
+}
+
+}  // namespace

@@ -1,0 +1,57 @@
+// Robot tasks solved (scene/robot_solver.cpp): a refused task is not solved, joints driven to
+// their targets without contact, and the boundary gaps measured.
+#include <memory>
+
+#include <gtest/gtest.h>
+
+#include "fesd_trajopt/scene/robot_solver.h"
+#include "support/robot_files.h"
+
+namespace {
+
+fesd::RobotTask armTask() {
+  fesd::DiscScene discs(2);
+  discs.obstacles().push_back({"post", 0.05, Eigen::Vector2d(0.0, 0.7)});
+  fesd::RobotTask task(fesd::RobotScene(
+      std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf")),
+      Eigen::Vector3d::Zero(), discs));
+  task.horizon = 1.0;
+  task.num_intervals = 4;
+  return task;
+}
+
+TEST(RobotSolver, RefusedTaskIsNotSolved) {
+  fesd::RobotTask task = armTask();
+  task.horizon = -1.0;
+  const fesd::RobotOutcome outcome = fesd::solveRobotTask(task, {}, {});
+  EXPECT_EQ(outcome.invalid, "the horizon must be in (0, 1e+04], got -1");
+  EXPECT_TRUE(outcome.trajectory.states.empty());
+}
+
+TEST(RobotSolver, JointsReachTheirTargets) {
+  fesd::RobotTask task = armTask();
+  task.joints[1].target = 0.5;
+  task.joints[1].target_weight = 100.0;
+  const fesd::RobotOutcome outcome = fesd::solveRobotTask(task, {}, {});
+  ASSERT_EQ(outcome.status, fesd::SolveStatus::kSuccess) << outcome.message;
+  EXPECT_LT(outcome.joint_target_distances[1], 1e-3);
+  EXPECT_TRUE(std::isnan(outcome.joint_target_distances[0]));
+  EXPECT_GT(outcome.boundary_gap, 0.0);
+  EXPECT_LT(outcome.verification_error, 1e-6);
+}
+
+TEST(RobotSolver, SmallestBoundaryGap) {
+  const fesd::RobotTask task = armTask();
+  std::vector<fesd::RobotPair> tip;
+  for (const fesd::RobotPair& pair : task.scene.allPairs()) {
+    if (task.scene.pairName(pair) == "hand/sphere_1/post") tip.push_back(pair);
+  }
+  ASSERT_EQ(tip.size(), 1u);
+  fesd::Trajectory trajectory;
+  trajectory.states = {task.scene.initialState(), Eigen::Vector3d(M_PI / 2, 0.0, 0.0)};
+  // At q = 0 the tip (0.9, 0) is sqrt(0.81 + 0.49) from the post; turned up it is at (0, 0.9),
+  // 0.2 away: the gaps less the radii 0.08.
+  EXPECT_NEAR(fesd::smallestBoundaryGap(task.scene, tip, trajectory), 0.2 - 0.08, 1e-12);
+}
+
+}  // namespace
