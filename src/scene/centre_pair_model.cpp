@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <map>
 
+#include "fesd_trajopt/function/pattern_builder.h"
+
 namespace fesd {
 namespace {
 
@@ -129,20 +131,6 @@ class LocalPair {
   const PairLayout& layout_;
   Eigen::Matrix3Xd jacobian_;
   Eigen::Vector3d difference_;
-};
-
-/// Deduplicating builder for a sparsity pattern: (row, col) -> slot.
-class PatternBuilder {
- public:
-  int slot(int row, int col) {
-    const auto inserted = index_.emplace(std::make_pair(row, col), pattern.nonzeros());
-    if (inserted.second) pattern.add(row, col);
-    return inserted.first->second;
-  }
-  SparsityPattern pattern;
-
- private:
-  std::map<std::pair<int, int>, int> index_;
 };
 
 /// The pairs' shared state: layouts and the (mutable) evaluator.

@@ -3,6 +3,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "fesd_trajopt/function/pattern_builder.h"
+
 namespace fesd {
 namespace {
 
@@ -135,20 +137,6 @@ class PairGradients {
   int dimension_;
   std::vector<PairGeometry> pairs_;
   std::vector<Entry> entries_;
-};
-
-/// Deduplicating builder for a sparsity pattern: (row, col) -> slot.
-class PatternBuilder {
- public:
-  int slot(int row, int col) {
-    const auto inserted = index_.emplace(std::make_pair(row, col), pattern.nonzeros());
-    if (inserted.second) pattern.add(row, col);
-    return inserted.first->second;
-  }
-  SparsityPattern pattern;
-
- private:
-  std::map<std::pair<int, int>, int> index_;
 };
 
 /// c(x) for the chosen pairs.

@@ -6,6 +6,7 @@
 
 #include "fesd_trajopt/scene/robot_guess.h"
 #include "fesd_trajopt/scene/robot_lazy_pairs.h"
+#include "fesd_trajopt/scene/scene_solver.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 
 namespace fesd {
@@ -129,14 +130,9 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
   outcome.boundary_gap = smallestBoundaryGap(task.scene, outcome.modelled, outcome.trajectory);
   judgeTargets(task, outcome);
   if (options.verify && outcome.status != SolveStatus::kCancelled) {
-    SimulationOptions fine;
-    fine.discretization = options.verification;
-    const DiscretizationOptions& solved = options.ocp.discretization;
-    fine.discretization.num_stages = std::max(fine.discretization.num_stages, solved.num_stages);
-    fine.discretization.num_elements =
-        std::max(fine.discretization.num_elements, 2 * solved.num_elements);
-    fine.wall_time_budget =
-        std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
+    const SimulationOptions fine =
+        verificationOptions(options.verification, options.ocp.discretization,
+                            options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
     const SimulationResult result =
         resimulate(buildRobotOcp(task, outcome.modelled), outcome.trajectory.controls, fine);
     if (result.status == SolveStatus::kSuccess) {

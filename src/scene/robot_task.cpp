@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 #include <sstream>
 
 #include "fesd_trajopt/function/quadratic_function.h"
@@ -19,16 +18,6 @@ std::string formatNumber(double value) {
   out.precision(3);
   out << value;
   return out.str();
-}
-
-std::string vectorProblem(const Eigen::VectorXd& v, int dimension, double max_coordinate) {
-  if (v.size() != dimension) {
-    return "has " + std::to_string(v.size()) + " coordinates, the scene " +
-           std::to_string(dimension);
-  }
-  if (!v.allFinite()) return "is not finite";
-  if (v.cwiseAbs().maxCoeff() > max_coordinate) return "is beyond the coordinate limit";
-  return "";
 }
 
 /// |u_max| over every control coordinate at its bound.
@@ -97,16 +86,8 @@ std::string validateRobotTask(const RobotTask& task, const TaskLimits& limits) {
     return "one joint task per robot coordinate is needed";
   }
   if (task.bodies.size() != discs.bodies().size()) return "one body task per body is needed";
-  if (!(task.horizon > 0.0) || !std::isfinite(task.horizon) || task.horizon > limits.max_horizon) {
-    return "the horizon must be in (0, " + formatNumber(limits.max_horizon) + "], got " +
-           formatNumber(task.horizon);
-  }
-  if (task.num_intervals < 1 || task.num_intervals > limits.max_intervals) {
-    return "the number of control intervals must be in 1.." + std::to_string(limits.max_intervals);
-  }
-  if (!(task.control_weight >= 0.0) || !std::isfinite(task.control_weight)) {
-    return "the control weight must be finite and >= 0";
-  }
+  std::string problem = gridProblem(task.horizon, task.num_intervals, task.control_weight, limits);
+  if (!problem.empty()) return problem;
   if (!(task.default_joint_velocity > 0.0) || !std::isfinite(task.default_joint_velocity)) {
     return "the default joint velocity must be finite and > 0";
   }
@@ -130,45 +111,14 @@ std::string validateRobotTask(const RobotTask& task, const TaskLimits& limits) {
              formatNumber(lower) + ", " + formatNumber(upper) + "]";
     }
   }
-  std::set<std::string> names;
+  problem = bodiesProblem(discs, task.bodies, limits);
+  if (problem.empty()) problem = fixedGeometryProblem(discs, limits);
+  if (!problem.empty()) return problem;
   for (size_t b = 0; b < discs.bodies().size(); ++b) {
-    const SceneBody& body = discs.bodies()[b];
     const BodyTask& t = task.bodies[b];
-    const std::string who = "body '" + body.name + "'";
-    if (!names.insert(body.name).second) return "two bodies are named '" + body.name + "'";
-    if (!(body.radius > 0.0) || !std::isfinite(body.radius)) {
-      return who + " has radius " + formatNumber(body.radius) + " (must be > 0 and finite)";
-    }
-    std::string problem = vectorProblem(body.position, dim, limits.max_coordinate);
-    if (!problem.empty()) return who + ": the initial position " + problem;
-    if (!(t.max_speed >= 0.0) || !std::isfinite(t.max_speed)) {
-      return who + ": the speed bound must be finite and >= 0";
-    }
-    if (t.target.size()) {
-      problem = vectorProblem(t.target, dim, limits.max_coordinate);
-      if (!problem.empty()) return who + ": the target " + problem;
-    }
-    if (!(t.target_weight >= 0.0) || !std::isfinite(t.target_weight)) {
-      return who + ": the target weight must be finite and >= 0";
-    }
-    if (t.target_weight > 0.0 && t.target.size() == 0) return who + " has a weight but no target";
     if (t.workspace_lower.size() || t.workspace_upper.size()) {
-      return who + ": workspace bounds are not supported in robot scenes";
-    }
-  }
-  for (const SceneObstacle& o : discs.obstacles()) {
-    if (!(o.radius > 0.0) || !std::isfinite(o.radius)) {
-      return "obstacle '" + o.name + "' has radius " + formatNumber(o.radius) +
-             " (must be > 0 and finite)";
-    }
-    const std::string problem = vectorProblem(o.position, dim, limits.max_coordinate);
-    if (!problem.empty()) return "obstacle '" + o.name + "': the position " + problem;
-  }
-  for (const SceneWall& w : discs.walls()) {
-    if (w.normal.size() != dim || !w.normal.allFinite() ||
-        std::fabs(w.normal.norm() - 1.0) > 1e-9 || !std::isfinite(w.offset)) {
-      return "wall '" + w.name + "' needs a finite unit normal with " + std::to_string(dim) +
-             " coordinates and a finite offset";
+      return "body '" + discs.bodies()[b].name +
+             "': workspace bounds are not supported in robot scenes";
     }
   }
   const Eigen::VectorXd x0 = scene.initialState();

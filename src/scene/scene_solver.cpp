@@ -344,21 +344,28 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
   outcome.message += rounds_note;
   judgeTargets(task, outcome, plan);
   if (options.verify && outcome.status != SolveStatus::kCancelled) {
-    SimulationOptions fine;
-    fine.discretization = options.verification;
-    // The reference must be finer than the solve, or its own error is what gets measured (the
-    // configured n_s = 3, N_FE = 6 showed 1.4e-6 against n_s = 4 solves of any N_FE).
-    const DiscretizationOptions& solved = options.ocp.discretization;
-    fine.discretization.num_stages = std::max(fine.discretization.num_stages, solved.num_stages);
-    fine.discretization.num_elements =
-        std::max(fine.discretization.num_elements, 2 * solved.num_elements);
-    // 0 when the solve used it all: the re-simulation times out and its error is infinite.
-    fine.wall_time_budget =
-        std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
+    const SimulationOptions fine =
+        verificationOptions(options.verification, options.ocp.discretization,
+                            options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
     outcome.verified = true;
     outcome.verification_error = verifyOutcome(task, outcome, fine, options.pair_margin).error;
   }
   return outcome;
+}
+
+SimulationOptions verificationOptions(const DiscretizationOptions& configured,
+                                      const DiscretizationOptions& solved,
+                                      double remaining_budget) {
+  SimulationOptions fine;
+  fine.discretization = configured;
+  // The reference must be finer than the solve, or its own error is what gets measured (the
+  // configured n_s = 3, N_FE = 6 showed 1.4e-6 against n_s = 4 solves of any N_FE).
+  fine.discretization.num_stages = std::max(fine.discretization.num_stages, solved.num_stages);
+  fine.discretization.num_elements =
+      std::max(fine.discretization.num_elements, 2 * solved.num_elements);
+  // 0 when the solve used it all: the re-simulation times out and its error is infinite.
+  fine.wall_time_budget = std::max(0.0, remaining_budget);
+  return fine;
 }
 
 Verification verifyOutcome(const SceneTask& task, const SceneOutcome& outcome,

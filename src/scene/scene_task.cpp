@@ -134,37 +134,29 @@ double targetTolerance(double target_weight) {
   return 1e-3 * std::max(1.0, 100.0 / target_weight);
 }
 
-std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
-  const DiscScene& scene = task.scene;
-  const int dim = scene.dimension();
-  if (dim != 2 && dim != 3) return "the scene must be planar (2) or spatial (3)";
-  if (scene.bodies().empty()) return "the scene has no bodies (no movable URDF link, none added)";
-  if (static_cast<int>(scene.bodies().size()) > limits.max_bodies) {
-    return "too many bodies: " + std::to_string(scene.bodies().size()) + " > " +
-           std::to_string(limits.max_bodies);
-  }
-  if (static_cast<int>(scene.obstacles().size()) > limits.max_obstacles) {
-    return "too many obstacles (limit " + std::to_string(limits.max_obstacles) + ")";
-  }
-  if (static_cast<int>(scene.walls().size()) > limits.max_walls) {
-    return "too many walls (limit " + std::to_string(limits.max_walls) + ")";
-  }
-  if (task.bodies.size() != scene.bodies().size()) return "one body task per body is needed";
-  if (!(task.horizon > 0.0) || !std::isfinite(task.horizon) || task.horizon > limits.max_horizon) {
+std::string gridProblem(double horizon, int num_intervals, double control_weight,
+                        const TaskLimits& limits) {
+  if (!(horizon > 0.0) || !std::isfinite(horizon) || horizon > limits.max_horizon) {
     return "the horizon must be in (0, " + formatNumber(limits.max_horizon) + "], got " +
-           formatNumber(task.horizon);
+           formatNumber(horizon);
   }
-  if (task.num_intervals < 1 || task.num_intervals > limits.max_intervals) {
+  if (num_intervals < 1 || num_intervals > limits.max_intervals) {
     return "the number of control intervals must be in 1.." + std::to_string(limits.max_intervals) +
-           ", got " + std::to_string(task.num_intervals);
+           ", got " + std::to_string(num_intervals);
   }
-  if (!(task.control_weight >= 0.0) || !std::isfinite(task.control_weight)) {
+  if (!(control_weight >= 0.0) || !std::isfinite(control_weight)) {
     return "the control weight must be finite and >= 0";
   }
+  return "";
+}
+
+std::string bodiesProblem(const DiscScene& scene, const std::vector<BodyTask>& bodies,
+                          const TaskLimits& limits) {
+  const int dim = scene.dimension();
   std::set<std::string> names;
   for (size_t b = 0; b < scene.bodies().size(); ++b) {
     const SceneBody& body = scene.bodies()[b];
-    const BodyTask& t = task.bodies[b];
+    const BodyTask& t = bodies[b];
     const std::string who = "body '" + body.name + "'";
     if (!names.insert(body.name).second) return "two bodies are named '" + body.name + "'";
     if (!(body.radius > 0.0) || !std::isfinite(body.radius)) {
@@ -183,14 +175,12 @@ std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
       return who + ": the target weight must be finite and >= 0";
     }
     if (t.target_weight > 0.0 && t.target.size() == 0) return who + " has a weight but no target";
-    problem = boundsProblem(t.workspace_lower, t.workspace_upper, dim);
-    if (!problem.empty()) return who + ": the workspace bounds " + problem;
-    if ((t.workspace_lower.size() && (body.position.array() < t.workspace_lower.array()).any()) ||
-        (t.workspace_upper.size() && (body.position.array() > t.workspace_upper.array()).any())) {
-      return who + " starts outside its workspace bounds";
-    }
   }
-  if (scene.controlSize() == 0) return "no body is actuated, so nothing can move";
+  return "";
+}
+
+std::string fixedGeometryProblem(const DiscScene& scene, const TaskLimits& limits) {
+  const int dim = scene.dimension();
   for (const SceneObstacle& o : scene.obstacles()) {
     if (!(o.radius > 0.0) || !std::isfinite(o.radius)) {
       return "obstacle '" + o.name + "' has radius " + formatNumber(o.radius) +
@@ -206,6 +196,42 @@ std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
              " coordinates and a finite offset";
     }
   }
+  return "";
+}
+
+std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
+  const DiscScene& scene = task.scene;
+  const int dim = scene.dimension();
+  if (dim != 2 && dim != 3) return "the scene must be planar (2) or spatial (3)";
+  if (scene.bodies().empty()) return "the scene has no bodies (no movable URDF link, none added)";
+  if (static_cast<int>(scene.bodies().size()) > limits.max_bodies) {
+    return "too many bodies: " + std::to_string(scene.bodies().size()) + " > " +
+           std::to_string(limits.max_bodies);
+  }
+  if (static_cast<int>(scene.obstacles().size()) > limits.max_obstacles) {
+    return "too many obstacles (limit " + std::to_string(limits.max_obstacles) + ")";
+  }
+  if (static_cast<int>(scene.walls().size()) > limits.max_walls) {
+    return "too many walls (limit " + std::to_string(limits.max_walls) + ")";
+  }
+  if (task.bodies.size() != scene.bodies().size()) return "one body task per body is needed";
+  std::string problem = gridProblem(task.horizon, task.num_intervals, task.control_weight, limits);
+  if (problem.empty()) problem = bodiesProblem(scene, task.bodies, limits);
+  if (!problem.empty()) return problem;
+  for (size_t b = 0; b < scene.bodies().size(); ++b) {
+    const SceneBody& body = scene.bodies()[b];
+    const BodyTask& t = task.bodies[b];
+    const std::string who = "body '" + body.name + "'";
+    problem = boundsProblem(t.workspace_lower, t.workspace_upper, dim);
+    if (!problem.empty()) return who + ": the workspace bounds " + problem;
+    if ((t.workspace_lower.size() && (body.position.array() < t.workspace_lower.array()).any()) ||
+        (t.workspace_upper.size() && (body.position.array() > t.workspace_upper.array()).any())) {
+      return who + " starts outside its workspace bounds";
+    }
+  }
+  if (scene.controlSize() == 0) return "no body is actuated, so nothing can move";
+  problem = fixedGeometryProblem(scene, limits);
+  if (!problem.empty()) return problem;
   const Eigen::VectorXd x0 = scene.initialState();
   const std::vector<ContactPair> all = scene.allPairs();
   for (const ContactPair& pair : all) {

@@ -116,6 +116,11 @@ struct SceneSolveOptions {
 SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
                             const SceneSolveOptions& options);
 
+/// The grid a plan is verified on: the configured one, but at least the solve's stages and twice
+/// its elements; within the budget left (none when the solve used it all).
+SimulationOptions verificationOptions(const DiscretizationOptions& configured,
+                                      const DiscretizationOptions& solved, double remaining_budget);
+
 /// A solution's controls re-simulated on a finer grid, in the full scene, as if every pair in
 /// reach (the outcome's modelled and checked pairs) were modelled: the verification of
 /// solveSceneTask. Lazily, as the solve: with the modelled pairs first, then again with every

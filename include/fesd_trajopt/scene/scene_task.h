@@ -51,6 +51,18 @@ struct TaskLimits {
   double max_solver_mib = 2048.0;
 };
 
+// Checks shared by every kind of scene task (discs, robots); each returns "" or a message
+// naming the problem.
+/// The horizon, the number of control intervals and the control weight.
+std::string gridProblem(double horizon, int num_intervals, double control_weight,
+                        const TaskLimits& limits);
+/// Each body (one task per body): a unique name, radius, initial position, speed bound, target
+/// and weight. Workspace bounds are the caller's.
+std::string bodiesProblem(const DiscScene& scene, const std::vector<BodyTask>& bodies,
+                          const TaskLimits& limits);
+/// Every obstacle's radius and position, every wall's unit normal and offset.
+std::string fixedGeometryProblem(const DiscScene& scene, const TaskLimits& limits);
+
 /// Checks a task for what it must not contain: non-finite numbers, radii <= 0, wrong
 /// dimensions, no actuated body, bodies overlapping each other, an obstacle or a wall at the start,
 /// bounds that exclude the start, sizes beyond the limits. Returns "" or a message naming the
