@@ -12,8 +12,9 @@ import xmlrpc.client
 
 import rosgraph
 import rospy
-from fesd_trajopt.msg import BodySpec, PlanRequest
+from fesd_trajopt.msg import BodySpec, Obstacle, PlanRequest
 from fesd_trajopt.srv import SolveTrajectory
+from geometry_msgs.msg import Point
 
 NODE = "/fesd_trajopt"
 
@@ -71,10 +72,30 @@ def disc_in_the_way_to_1e_2():
     return request
 
 
+def object_target(x, y):
+    request = PlanRequest()
+    body = BodySpec(name="object", target_weight=1000.0)
+    body.target.x, body.target.y = x, y
+    request.bodies = [body]
+    return request
+
+
+def target_inside_a_disc():
+    """The object's target (0, 10) inside a fixed disc of radius 3 at (0, 9)."""
+    request = PlanRequest()
+    request.obstacles = [Obstacle(name="rock", radius=3.0, position=Point(0.0, 9.0, 0.0))]
+    return request
+
+
 CASES = {"default": default_scene, "far_body": far_body,
          "ten_discs_out_of_reach": ten_discs_out_of_reach, "ten_discs_in_reach": ten_discs_in_reach,
          "ten_discs_in_reach_all_pairs": ten_discs_in_reach_all_pairs,
-         "disc_in_the_way": disc_in_the_way, "disc_in_the_way_to_1e-2": disc_in_the_way_to_1e_2}
+         "disc_in_the_way": disc_in_the_way, "disc_in_the_way_to_1e-2": disc_in_the_way_to_1e_2,
+         # Soft targets out of the actuators' reach (their workspace bounds) or inside a body.
+         "target_x_0.9": lambda: object_target(0.9, 10.0),
+         "target_x_-0.9": lambda: object_target(-0.9, 10.0),
+         "target_x_1.2": lambda: object_target(1.2, 10.0),
+         "target_inside_a_disc": target_inside_a_disc}
 
 
 def node_memory_mib():
@@ -103,17 +124,19 @@ def main():
             round_trip = time.monotonic() - started
             stats = response.solution.statistics
             peak, resident = node_memory_mib()
+            missed = [b.target_distance for b in response.solution.bodies
+                      if b.target_distance == b.target_distance]  # NaN: no target
             print("case=%s run=%d status=%d bodies=%d modelled_pairs=%d checked_pairs=%d "
                   "pruned_pairs=%d pair_rounds=%d nlp_variables=%d complementarities=%d "
                   "ipopt_iterations=%d objective=%.7g solve_s=%.3f round_trip_s=%.3f "
-                  "verification_error=%.3g node_peak_mib=%.1f node_rss_mib=%.1f" % (
+                  "verification_error=%.3g target_distance=%.3g node_peak_mib=%.1f node_rss_mib=%.1f" % (
                       case, run, response.status, len(response.solution.bodies),
                       len(response.solution.modeled_pairs), len(response.solution.checked_pairs),
                       len(response.solution.pruned_pairs), stats.pair_rounds,
                       stats.nlp_variables, stats.complementarity_constraints,
                       stats.ipopt_iterations, stats.objective, stats.wall_time, round_trip,
                       response.solution.verification_error if response.solution.verified
-                      else float("nan"), peak, resident))
+                      else float("nan"), max(missed, default=float("nan")), peak, resident))
             sys.stdout.flush()
     return 0
 

@@ -15,14 +15,6 @@ namespace fesd {
 namespace planning_scenes {
 namespace {
 
-/// Distance from p to the segment from a to b.
-double segmentDistance(const Eigen::VectorXd& p, const Eigen::VectorXd& a,
-                       const Eigen::VectorXd& b) {
-  const Eigen::VectorXd d = b - a;
-  const double s = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-  return (a + s * d - p).norm();
-}
-
 /// Whether a disc at p (radius r) keeps `gap` clear of every body and obstacle.
 bool fits(const DiscScene& scene, const Eigen::VectorXd& p, double r, double gap) {
   for (const SceneBody& b : scene.bodies()) {

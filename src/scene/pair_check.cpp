@@ -21,15 +21,16 @@ Eigen::VectorXd relativePosition(const DiscScene& scene, const ContactPair& pair
   return p;
 }
 
-/// The closest approach of the segment from a to b to the origin.
-double closestApproach(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+}  // namespace
+
+double segmentDistance(const Eigen::VectorXd& p, const Eigen::VectorXd& a,
+                       const Eigen::VectorXd& b) {
   const Eigen::VectorXd d = b - a;
   const double length_squared = d.squaredNorm();
-  const double s = length_squared > 0.0 ? std::clamp(-a.dot(d) / length_squared, 0.0, 1.0) : 0.0;
-  return (a + s * d).norm();
+  const double s =
+      length_squared > 0.0 ? std::clamp((p - a).dot(d) / length_squared, 0.0, 1.0) : 0.0;
+  return (a + s * d - p).norm();
 }
-
-}  // namespace
 
 double pairSize(const DiscScene& scene, const ContactPair& pair) {
   const double radius = scene.bodies().at(pair.body).radius;
@@ -64,7 +65,7 @@ double smallestGap(const DiscScene& scene, const ContactPair& pair,
   for (size_t i = 0; i < path.size(); ++i) {
     const Eigen::VectorXd a = relativePosition(scene, pair, path[i]);
     const Eigen::VectorXd b = i + 1 < path.size() ? relativePosition(scene, pair, path[i + 1]) : a;
-    smallest = std::min(smallest, closestApproach(a, b) - size);
+    smallest = std::min(smallest, segmentDistance(Eigen::VectorXd::Zero(a.size()), a, b) - size);
   }
   return smallest;
 }

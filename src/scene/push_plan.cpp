@@ -509,10 +509,16 @@ double unpushableFraction(const std::vector<PushAssignment>& placed,
   return (G * nonnegativeLeastSquares(G, displacement) - displacement).norm() / displacement.norm();
 }
 
-bool clearOfObstaclesAndWalls(const DiscScene& scene, int body, const Eigen::VectorXd& p) {
+/// Whether a body ends at p clear of the obstacles and walls; with `path_from`, pushed straight
+/// there from that start without meeting an obstacle (a replacement end behind an obstacle would
+/// need a push around it).
+bool clearEnd(const DiscScene& scene, int body, const Eigen::VectorXd& p,
+              const Eigen::VectorXd* path_from = nullptr) {
   const double radius = scene.bodies()[body].radius;
   for (const SceneObstacle& obstacle : scene.obstacles()) {
-    if ((p - obstacle.position).norm() < radius + obstacle.radius) return false;
+    const double distance = path_from ? segmentDistance(obstacle.position, *path_from, p)
+                                      : (p - obstacle.position).norm();
+    if (distance < radius + obstacle.radius) return false;
   }
   for (const SceneWall& wall : scene.walls()) {
     if (wall.normal.dot(p) - wall.offset < radius) return false;
@@ -542,10 +548,10 @@ std::vector<Eigen::VectorXd> searchDirections(int dim) {
 }
 
 /// Where the plan pushes a passive body: its target when the pushers can be placed to push it
-/// there (workspace bounds) and it is clear of obstacles and walls; otherwise the nearest such
-/// end on rings around the target, 2 % of the push's length apart, refined by bisection along
-/// the direction found (the start if none is). A
-/// soft target out of reach then gets a first guess near the best plan, not one that pushes
+/// there (workspace bounds) and it is clear of obstacles and walls; otherwise the nearest end
+/// that is, with a straight path clear of obstacles, on rings around the target 2 % of the
+/// push's length apart, refined by bisection along the direction found (the start if none is).
+/// A soft target out of reach then gets a first guess near the best plan, not one that pushes
 /// wherever the pushers happen to fit.
 Eigen::VectorXd pushableEnd(const SceneTask& task, const std::vector<ContactPair>& pairs,
                             int pushed, const std::vector<bool>& busy) {
@@ -553,23 +559,26 @@ Eigen::VectorXd pushableEnd(const SceneTask& task, const std::vector<ContactPair
   const Eigen::VectorXd start = scene.bodies()[pushed].position;
   const Eigen::VectorXd target = task.bodies[pushed].target;
   const auto pushable = [&](const Eigen::VectorXd& end) {
-    if (!clearOfObstaclesAndWalls(scene, pushed, end)) return false;
     std::vector<bool> trial = busy;
     return unpushableFraction(placePushers(task, pairs, pushed, end, trial), end - start) <
            kUnpushableFraction;
   };
-  if (pushable(target)) return target;
+  // The target's own path may go around obstacles (besidePath); a replacement's may not.
+  if (clearEnd(scene, pushed, target) && pushable(target)) return target;
+  const auto replacement = [&](const Eigen::VectorXd& end) {
+    return clearEnd(scene, pushed, end, &start) && pushable(end);
+  };
   const double length = (target - start).norm();
   const std::vector<Eigen::VectorXd> directions = searchDirections(scene.dimension());
   const double spacing = length / kSearchRings;
   for (int ring = 1; ring <= kSearchRings; ++ring) {
     for (const Eigen::VectorXd& direction : directions) {
-      if (!pushable(target + ring * spacing * direction)) continue;
+      if (!replacement(target + ring * spacing * direction)) continue;
       // The ring inside was out of reach in this direction: bisect between the two.
       double reachable = ring * spacing, unreachable = (ring - 1) * spacing;
       for (int halving = 0; halving < 10; ++halving) {
         const double middle = 0.5 * (reachable + unreachable);
-        (pushable(target + middle * direction) ? reachable : unreachable) = middle;
+        (replacement(target + middle * direction) ? reachable : unreachable) = middle;
       }
       return target + reachable * direction;
     }

@@ -11,6 +11,10 @@ namespace fesd {
 /// The length that a pair's margins are relative to: the sum of its radii (a wall has none).
 double pairSize(const DiscScene& scene, const ContactPair& pair);
 
+/// Distance from p to the segment from a to b.
+double segmentDistance(const Eigen::VectorXd& p, const Eigen::VectorXd& a,
+                       const Eigen::VectorXd& b);
+
 /// The signed gap between a pair's surfaces at a state of the scene (negative: overlap).
 double pairGap(const DiscScene& scene, const ContactPair& pair, const Eigen::VectorXd& x);
 
