@@ -91,8 +91,9 @@ RobotTaskBuild buildRobotTask(const NodeConfig& config, const SceneFields& scene
   for (const fesd_trajopt::JointSpec& spec : robot.joints) {
     const int j = read.robot->jointIndex(spec.name);
     if (j < 0) {
-      build.error = "joint '" + spec.name + "' is not a moving joint of the robot (its joints: " +
-                    jointNames(*read.robot) + ")";
+      build.error = "joint '" + spec.name +
+                    "' is not a moving joint of the robot (its joints: " + jointNames(*read.robot) +
+                    ")";
       return build;
     }
     build.error = applyJointSpec(spec, joint_tasks[j], start(j));

@@ -65,6 +65,28 @@ std::vector<Eigen::VectorXd> boundaryVelocities(const fesd::RobotTask& task,
   return velocities;
 }
 
+/// sceneMarkers draws paths and labels for the node's default scene (metres across); a robot
+/// scene is a tenth of that: thinner paths, smaller labels stacked below the body touched.
+void fitToRobotScale(const fesd_trajopt::Solution& solution,
+                     visualization_msgs::MarkerArray& markers) {
+  constexpr double kPathWidth = 0.008, kLabelHeight = 0.03;
+  size_t label = 0;
+  for (visualization_msgs::Marker& m : markers.markers) {
+    if (m.ns == "paths") m.scale.x = kPathWidth;
+    if (m.ns != "switch_labels" || label >= solution.switches.size()) continue;
+    const fesd_trajopt::SwitchEvent& event = solution.switches[label];
+    for (const fesd_trajopt::BodyTrajectory& body : solution.bodies) {
+      if (body.name != event.second || body.positions.empty()) continue;
+      size_t k = 0;  // the element boundary at the switch
+      while (k + 1 < solution.times.size() && solution.times[k] < event.time - 1e-12) ++k;
+      m.pose.position = body.positions[std::min(k, body.positions.size() - 1)];
+      m.pose.position.y -= body.radius + 1.2 * kLabelHeight * (label + 1);
+    }
+    m.scale.z = kLabelHeight;
+    ++label;
+  }
+}
+
 }  // namespace
 
 fesd_trajopt::Solution robotSolution(const fesd::RobotTask& task,
@@ -151,6 +173,7 @@ visualization_msgs::MarkerArray robotMarkers(const fesd::RobotTask& task,
   objects.scene = task.scene.discs();
   objects.bodies = task.bodies;
   visualization_msgs::MarkerArray markers = sceneMarkers(objects, solution, frame_id);
+  fitToRobotScale(solution, markers);
   const fesd::KinematicModel& robot = task.scene.robot();
   const auto& points = solution.joint_trajectory.points;
   if (points.empty()) return markers;

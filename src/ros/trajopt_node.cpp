@@ -56,9 +56,8 @@ std::string solveOptions(const fesd_trajopt::PlanRequest& request, const NodeCon
   if (request.method > fesd_trajopt::PlanRequest::METHOD_STANDARD) {
     return "unknown method " + std::to_string(request.method);
   }
-  const double tolerance = request.has_complementarity_tolerance
-                               ? request.complementarity_tolerance
-                               : config.complementarity_tolerance;
+  const double tolerance = request.has_complementarity_tolerance ? request.complementarity_tolerance
+                                                                 : config.complementarity_tolerance;
   const double budget = wallTimeBudget(request, config);
   if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {
     return "the complementarity tolerance must be > 0 and finite";
@@ -386,10 +385,9 @@ void TrajoptNode::handleRobotPlan(const fesd_trajopt::PlanRequest& request,
                                   const std::string& urdf_xml,
                                   fesd_trajopt::PlanTrajectoryResult& answer) {
   fesd::Stopwatch stopwatch;
-  RobotTaskBuild build =
-      buildRobotTask(config_, sceneFields(request),
-                     {request.joints, request.self_collision != 0, request.srdf_param}, urdf_xml,
-                     private_node_);
+  RobotTaskBuild build = buildRobotTask(
+      config_, sceneFields(request),
+      {request.joints, request.self_collision != 0, request.srdf_param}, urdf_xml, private_node_);
   if (!build.error.empty()) return refuse(answer, build.error);
   fesd::RobotTask& task = *build.task;
   if (request.has_horizon) task.horizon = request.horizon;
@@ -439,6 +437,16 @@ void TrajoptNode::publishRobot(const fesd::RobotTask& task,
   std::lock_guard<std::mutex> lock(publish_mutex_);
   solution_publisher_.publish(solution);
   marker_publisher_.publish(robotMarkers(task, solution, config_.frame_id));
+  // The robot's root is the scene's origin: robot_state_publisher's TF tree hangs from it.
+  const std::string& root = task.scene.robot().root_link;
+  if (!root.empty() && root != config_.frame_id) {
+    geometry_msgs::TransformStamped frame;
+    frame.header.stamp = ros::Time::now();
+    frame.header.frame_id = config_.frame_id;
+    frame.child_frame_id = root;
+    frame.transform.rotation.w = 1.0;
+    frame_broadcaster_.sendTransform(frame);
+  }
   publishPaths(solution);
   playback_.play(solution, task.scene.dimension() == 2);
 }
@@ -451,8 +459,8 @@ void TrajoptNode::handleRobotSimulate(const fesd_trajopt::Simulate::Request& req
   if (!request.commands.empty()) {
     return refuse(response, "robot scenes take joint_commands; body commands are not supported");
   }
-  RobotTaskBuild build = buildRobotTask(config_, sceneFields(request), {request.joints},
-                                        urdf_xml, private_node_);
+  RobotTaskBuild build =
+      buildRobotTask(config_, sceneFields(request), {request.joints}, urdf_xml, private_node_);
   if (!build.error.empty()) return refuse(response, build.error);
   fesd::RobotTask& task = *build.task;
   if (request.has_horizon) task.horizon = request.horizon;
@@ -464,8 +472,8 @@ void TrajoptNode::handleRobotSimulate(const fesd_trajopt::Simulate::Request& req
   const trajectory_msgs::JointTrajectory& commands = request.joint_commands;
   if (!commands.joint_names.empty() && commands.points.size() != 1 &&
       static_cast<int>(commands.points.size()) != steps) {
-    return refuse(response, "joint_commands needs 1 or " + std::to_string(steps) +
-                                " points, got " + std::to_string(commands.points.size()));
+    return refuse(response, "joint_commands needs 1 or " + std::to_string(steps) + " points, got " +
+                                std::to_string(commands.points.size()));
   }
   for (size_t i = 0; i < commands.joint_names.size(); ++i) {
     const int j = scene.robot().jointIndex(commands.joint_names[i]);
@@ -479,8 +487,8 @@ void TrajoptNode::handleRobotSimulate(const fesd_trajopt::Simulate::Request& req
         return refuse(response, "each point of joint_commands needs one velocity per joint name");
       }
       if (!std::isfinite(point.velocities[i])) {
-        return refuse(response, "the command of joint '" + commands.joint_names[i] +
-                                    "' is not finite");
+        return refuse(response,
+                      "the command of joint '" + commands.joint_names[i] + "' is not finite");
       }
       controls[k](j) = point.velocities[i];
     }
