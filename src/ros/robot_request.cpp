@@ -1,6 +1,7 @@
 #include "robot_request.h"
 
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include <fesd_trajopt/BodySpec.h>
@@ -118,9 +119,13 @@ RobotTaskBuild buildRobotTask(const NodeConfig& config, const SceneFields& scene
   fesd::RobotTask& task = build.task.emplace(std::move(robot_scene));
   task.joints = joint_tasks;
   task.bodies = objects.bodies;
-  task.horizon = objects.horizon;
-  task.num_intervals = objects.num_intervals;
-  task.control_weight = objects.control_weight;
+  // applySceneFields writes "no bounds" as +-infinity; a robot task wants none at all (finite
+  // ones are refused by validateRobotTask, naming the body).
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  for (fesd::BodyTask& body : task.bodies) {
+    if ((body.workspace_lower.array() == -kInf).all()) body.workspace_lower.resize(0);
+    if ((body.workspace_upper.array() == kInf).all()) body.workspace_upper.resize(0);
+  }
   return build;
 }
 

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <limits>
+#include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "fesd_trajopt/kinematics/forward_kinematics.h"
@@ -22,11 +25,20 @@ std::string otherName(const fesd::RobotScene& scene, const fesd::RobotPair& pair
   return "";
 }
 
+/// A pair's two names, a robot sphere first (`<link>/sphere_<k>`, then the body it touches).
+std::pair<std::string, std::string> pairNames(const fesd::RobotScene& scene,
+                                              const fesd::RobotPair& pair) {
+  const fesd::CollisionBody& body = scene.collisionBodies()[pair.body];
+  const bool other_is_sphere =
+      pair.kind == fesd::RobotPair::Kind::kBody && scene.collisionBodies()[pair.other].sphere >= 0;
+  if (body.sphere < 0 && other_is_sphere) return {otherName(scene, pair), body.name};
+  return {body.name, otherName(scene, pair)};
+}
+
 fesd_trajopt::ContactPair pairMessage(const fesd::RobotScene& scene,
                                       const fesd::RobotPairDecision& decision) {
   fesd_trajopt::ContactPair message;
-  message.first = scene.collisionBodies()[decision.pair.body].name;
-  message.second = otherName(scene, decision.pair);
+  std::tie(message.first, message.second) = pairNames(scene, decision.pair);
   message.reason = decision.reason;
   message.min_distance = std::numeric_limits<double>::quiet_NaN();  // not measured per pair
   return message;
@@ -156,8 +168,7 @@ fesd_trajopt::Solution robotSolution(const fesd::RobotTask& task,
     const fesd::RobotPair& pair = outcome.modelled[event.constraint];
     fesd_trajopt::SwitchEvent message;
     message.time = event.time;
-    message.first = scene.collisionBodies()[pair.body].name;
-    message.second = otherName(scene, pair);
+    std::tie(message.first, message.second) = pairNames(scene, pair);
     message.kind = event.kind == fesd::SwitchEvent::Kind::kContact
                        ? fesd_trajopt::SwitchEvent::CONTACT
                        : fesd_trajopt::SwitchEvent::RELEASE;

@@ -459,8 +459,8 @@ void TrajoptNode::handleRobotSimulate(const fesd_trajopt::Simulate::Request& req
   if (!request.commands.empty()) {
     return refuse(response, "robot scenes take joint_commands; body commands are not supported");
   }
-  RobotTaskBuild build =
-      buildRobotTask(config_, sceneFields(request), {request.joints}, urdf_xml, private_node_);
+  RobotTaskBuild build = buildRobotTask(config_, sceneFields(request), {request.joints, false, ""},
+                                        urdf_xml, private_node_);
   if (!build.error.empty()) return refuse(response, build.error);
   fesd::RobotTask& task = *build.task;
   if (request.has_horizon) task.horizon = request.horizon;
