@@ -19,7 +19,7 @@ DEBIAN_PACKAGES=(
   python3-visualization-msgs python3-nav-msgs python3-tf2-ros python3-rosservice python3-rostopic python3-rosnode
   coinor-libipopt-dev libeigen3-dev libgtest-dev libsiconos-kernel-dev
   liborocos-kdl-dev libkdl-parser-dev libtrajectory-msgs-dev libsensor-msgs-dev python3-trajectory-msgs
-  python3-sensor-msgs ros-robot-state-publisher
+  python3-sensor-msgs ros-robot-state-publisher ros-trajectory-msgs ros-sensor-msgs
   gnuplot-nox python3-matplotlib xvfb clang-format
 )
 

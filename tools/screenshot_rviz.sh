@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Renders the demo (node + client + rviz) under Xvfb and saves a screenshot of rviz showing the
-# solved default scene: tools/screenshot_rviz.sh [output.png] [seconds after the solve]
-# (defaults docs/rviz_default_scene.png, 5). The playback loops every 6 s (5 s of motion at
+# solved default scene: tools/screenshot_rviz.sh [output.png] [seconds after the solve] [launch]
+# (defaults docs/rviz_default_scene.png, 5, demo.launch; robot_demo.launch shows the planar arm). The playback loops every 6 s (5 s of motion at
 # ~playback_rate 1, then 1 s pause): 8.5 s after the solve it shows t ~ 2.5 s, mid-push.
 # Needs a built workspace (tools/run_default.sh) and imagemagick for `import`.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 source_workspace
 OUTPUT="${1:-$REPO_DIR/docs/rviz_default_scene.png}"
 DELAY="${2:-5}"
+LAUNCH_FILE="${3:-demo.launch}"
 DISPLAY_NUMBER=":$((90 + RANDOM % 9))"
 
 Xvfb "$DISPLAY_NUMBER" -screen 0 1200x850x24 >/dev/null 2>&1 &
@@ -21,7 +22,7 @@ cleanup() {
 trap cleanup EXIT
 sleep 2
 
-DISPLAY="$DISPLAY_NUMBER" roslaunch fesd_trajopt demo.launch >"$LOG" 2>&1 &
+DISPLAY="$DISPLAY_NUMBER" roslaunch fesd_trajopt "$LAUNCH_FILE" >"$LOG" 2>&1 &
 LAUNCH_PID=$!
 # The client prints the round trip last; then give rviz a few frames to draw the markers.
 for _ in $(seq 300); do
@@ -31,5 +32,5 @@ done
 grep -q "round trip" "$LOG" || { cat "$LOG"; echo "no solution within 300 s" >&2; exit 1; }
 sleep "$DELAY"
 DISPLAY="$DISPLAY_NUMBER" import -window root "$OUTPUT"
-grep -A20 "fesd_trajopt demo:" "$LOG" | grep -v "^\[" || true
+grep -A20 "fesd_trajopt.*demo:" "$LOG" | grep -v "^\[" || true
 echo "== screenshot: $OUTPUT"

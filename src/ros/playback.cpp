@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <sensor_msgs/JointState.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include "solution_message.h"
@@ -37,6 +38,7 @@ Playback::Playback(const ros::NodeHandle& private_node, double rate, double fram
   ros::NodeHandle node(private_node);
   node.setCallbackQueue(&callbacks_);
   publisher_ = node.advertise<visualization_msgs::MarkerArray>("playback", 1);
+  joint_state_publisher_ = node.advertise<sensor_msgs::JointState>("joint_states", 1);
   timer_ = node.createWallTimer(ros::WallDuration(1.0 / frames_per_second),
                                 [this](const ros::WallTimerEvent&) { showFrame(); });
   spinner_.start();
@@ -57,11 +59,13 @@ void Playback::play(const fesd_trajopt::Solution& solution, bool planar) {
 
 void Playback::showFrame() {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (solution_.times.empty() || publisher_.getNumSubscribers() == 0) return;
+  if (solution_.times.empty()) return;
   const double duration = solution_.times.back() - solution_.times.front();
   const double period = duration + kPauseSeconds * rate_;
   const double played = (ros::WallTime::now() - start_).toSec() * rate_;
   const double t = solution_.times.front() + std::min(std::fmod(played, period), duration);
+  publishJointState(t);
+  if (publisher_.getNumSubscribers() == 0) return;
   visualization_msgs::MarkerArray frame;
   for (size_t b = 0; b < solution_.bodies.size(); ++b) {
     const fesd_trajopt::BodyTrajectory& body = solution_.bodies[b];
@@ -81,6 +85,28 @@ void Playback::showFrame() {
     frame.markers.push_back(m);
   }
   publisher_.publish(frame);
+}
+
+void Playback::publishJointState(double t) {
+  const trajectory_msgs::JointTrajectory& motion = solution_.joint_trajectory;
+  if (motion.joint_names.empty() || motion.points.size() != solution_.times.size() ||
+      joint_state_publisher_.getNumSubscribers() == 0) {
+    return;
+  }
+  const std::vector<double>& times = solution_.times;
+  const size_t k = std::upper_bound(times.begin(), times.end(), t) - times.begin();
+  const size_t before = k == 0 ? 0 : std::min(k - 1, times.size() - 1);
+  const size_t after = std::min(k, times.size() - 1);
+  const double span = times[after] - times[before];
+  const double w = span > 0.0 ? (t - times[before]) / span : 0.0;
+  sensor_msgs::JointState state;
+  state.header.stamp = ros::Time::now();
+  state.name = motion.joint_names;
+  for (size_t j = 0; j < motion.joint_names.size(); ++j) {
+    const double a = motion.points[before].positions[j], b = motion.points[after].positions[j];
+    state.position.push_back(a + w * (b - a));
+  }
+  joint_state_publisher_.publish(state);
 }
 
 }  // namespace fesd_ros

@@ -15,6 +15,8 @@ namespace fesd_ros {
 /// MarkerArray, namespace "playback") at solution time rate * (wall time since the solve),
 /// between element boundaries linearly, then again after a pause of a second. Its timer has its
 /// own callback queue and thread, so frames keep coming while the node's spinner threads solve.
+/// A robot solution's joints go out as sensor_msgs/JointState on ~joint_states at each frame
+/// (positions linear between the element boundaries), for robot_state_publisher and rviz.
 class Playback {
  public:
   /// rate <= 0: no playback.
@@ -27,11 +29,12 @@ class Playback {
 
  private:
   void showFrame();
+  void publishJointState(double t);
 
   double rate_;
   ros::CallbackQueue callbacks_;
   ros::AsyncSpinner spinner_;
-  ros::Publisher publisher_;
+  ros::Publisher publisher_, joint_state_publisher_;
   ros::WallTimer timer_;
   std::mutex mutex_;
   fesd_trajopt::Solution solution_;

@@ -45,6 +45,8 @@ std::string requestedBounds(const std::vector<double>& values, int dim, Eigen::V
   return "";
 }
 
+}  // namespace
+
 std::string urdfSource(const NodeConfig& config, const SceneFields& request,
                        const ros::NodeHandle& node, std::string& xml) {
   if (!request.urdf.empty()) {
@@ -65,8 +67,6 @@ std::string urdfSource(const NodeConfig& config, const SceneFields& request,
   return "";
 }
 
-}  // namespace
-
 std::string otherName(const fesd::DiscScene& scene, const fesd::ContactPair& pair) {
   switch (pair.kind) {
     case fesd::ContactPair::Kind::kBody:
@@ -79,23 +79,8 @@ std::string otherName(const fesd::DiscScene& scene, const fesd::ContactPair& pai
   return "";
 }
 
-TaskBuild buildTask(const NodeConfig& config, const SceneFields& request,
-                    const ros::NodeHandle& node) {
-  TaskBuild build;
-  std::string xml;
-  build.error = urdfSource(config, request, node, xml);
-  if (!build.error.empty()) return build;
-  const bool planar = request.planar_override ? request.planar : config.planar;
-  fesd::UrdfScene urdf = fesd::sceneFromUrdf(xml, planar);
-  if (!urdf.error.empty()) {
-    build.error = urdf.error;
-    return build;
-  }
-  for (const std::string& link : urdf.ignored_links) {
-    build.notes.push_back("link '" + link + "' has no usable collision geometry and is ignored");
-  }
-  fesd::SceneTask& task = build.task;
-  task.scene = urdf.scene;
+std::string applySceneFields(const NodeConfig& config, const SceneFields& request,
+                             fesd::SceneTask& task) {
   const int dim = task.scene.dimension();
   task.horizon = config.horizon;
   task.num_intervals = config.num_intervals;
@@ -126,45 +111,37 @@ TaskBuild buildTask(const NodeConfig& config, const SceneFields& request,
   for (const fesd_trajopt::BodySpec& spec : request.bodies) {
     const std::string who = "body '" + spec.name + "'";
     if (spec.name.empty()) {
-      build.error = "a body in the request has no name";
-      return build;
+      return "a body in the request has no name";
     }
     int b = body_index(spec.name);
     if (spec.add) {
       if (b >= 0) {
-        build.error = who + " already exists; set add only for new bodies";
-        return build;
+        return who + " already exists; set add only for new bodies";
       }
       if (!(spec.radius > 0.0)) {
-        build.error =
-            who + " is added with radius " + std::to_string(spec.radius) + " (must be > 0)";
-        return build;
+        return who + " is added with radius " + std::to_string(spec.radius) + " (must be > 0)";
       }
       task.scene.bodies().push_back(
           {spec.name, spec.radius, coordinates(spec.initial_position, dim), false});
       configure(static_cast<int>(task.scene.bodies().size()) - 1);
       b = static_cast<int>(task.scene.bodies().size()) - 1;
     } else if (b < 0) {
-      build.error = who + " is not a link of the scene (unknown link); set add for a new body";
-      return build;
+      return who + " is not a link of the scene (unknown link); set add for a new body";
     }
     fesd::SceneBody& body = task.scene.bodies()[b];
     fesd::BodyTask& t = task.bodies[b];
     if (spec.radius < 0.0 || std::isnan(spec.radius)) {
-      build.error = who + " has radius " + std::to_string(spec.radius) + " (must be > 0)";
-      return build;
+      return who + " has radius " + std::to_string(spec.radius) + " (must be > 0)";
     }
     if (spec.radius > 0.0) body.radius = spec.radius;
     if (spec.override_initial_position) body.position = coordinates(spec.initial_position, dim);
     if (spec.role == fesd_trajopt::BodySpec::ROLE_ACTUATED) body.actuated = true;
     if (spec.role == fesd_trajopt::BodySpec::ROLE_PASSIVE) body.actuated = false;
     if (spec.role > fesd_trajopt::BodySpec::ROLE_PASSIVE) {
-      build.error = who + " has an unknown role " + std::to_string(spec.role);
-      return build;
+      return who + " has an unknown role " + std::to_string(spec.role);
     }
     if (spec.max_speed < 0.0 || std::isnan(spec.max_speed)) {
-      build.error = who + ": max_speed must be >= 0";
-      return build;
+      return who + ": max_speed must be >= 0";
     }
     if (spec.max_speed > 0.0) t.max_speed = spec.max_speed;
     if (spec.clear_target) {
@@ -180,8 +157,7 @@ TaskBuild buildTask(const NodeConfig& config, const SceneFields& request,
           std::make_tuple(&spec.workspace_upper, &t.workspace_upper, "workspace_upper")}) {
       const std::string problem = requestedBounds(*values, dim, *bounds);
       if (!problem.empty()) {
-        build.error = who + ": " + name + " " + problem;
-        return build;
+        return who + ": " + name + " " + problem;
       }
     }
   }
@@ -195,8 +171,7 @@ TaskBuild buildTask(const NodeConfig& config, const SceneFields& request,
     if (dim == 3) normal(2) = w.normal.z;
     const double length = normal.norm();
     if (!(length > 0.0) || !std::isfinite(length)) {
-      build.error = "wall '" + w.name + "' has no usable normal (zero, NaN or infinite)";
-      return build;
+      return "wall '" + w.name + "' has no usable normal (zero, NaN or infinite)";
     }
     task.scene.walls().push_back({w.name, normal / length, w.offset / length});
   }
@@ -204,16 +179,36 @@ TaskBuild buildTask(const NodeConfig& config, const SceneFields& request,
   for (const auto& b : task.scene.bodies()) names.insert(b.name);
   for (const auto& o : task.scene.obstacles()) {
     if (o.name.empty() || !names.insert(o.name).second) {
-      build.error = "obstacle name '" + o.name + "' is empty or already used";
-      return build;
+      return "obstacle name '" + o.name + "' is empty or already used";
     }
   }
   for (const auto& w : task.scene.walls()) {
     if (w.name.empty() || !names.insert(w.name).second) {
-      build.error = "wall name '" + w.name + "' is empty or already used";
-      return build;
+      return "wall name '" + w.name + "' is empty or already used";
     }
   }
+  return "";
+}
+
+TaskBuild buildTask(const NodeConfig& config, const SceneFields& request,
+                    const ros::NodeHandle& node) {
+  TaskBuild build;
+  std::string xml;
+  build.error = urdfSource(config, request, node, xml);
+  if (!build.error.empty()) return build;
+  const bool planar = request.planar_override ? request.planar : config.planar;
+  fesd::UrdfScene urdf = fesd::sceneFromUrdf(xml, planar);
+  if (!urdf.error.empty()) {
+    build.error = urdf.error;
+    return build;
+  }
+  for (const std::string& link : urdf.ignored_links) {
+    build.notes.push_back("link '" + link + "' has no usable collision geometry and is ignored");
+  }
+  fesd::SceneTask& task = build.task;
+  task.scene = urdf.scene;
+  build.error = applySceneFields(config, request, task);
+  if (!build.error.empty()) return build;
   const std::vector<fesd::ContactPair> all = task.scene.allPairs();
   for (const fesd_trajopt::ContactPair& allowed : request.allowed_pairs) {
     bool found = false;

@@ -43,6 +43,16 @@ struct TaskBuild {
 TaskBuild buildTask(const NodeConfig& config, const SceneFields& request,
                     const ros::NodeHandle& node);
 
+/// The request's scene URDF (its urdf, else the parameter urdf_param, else ~scene_urdf) into
+/// `xml`; returns "" or why there is none.
+std::string urdfSource(const NodeConfig& config, const SceneFields& request,
+                       const ros::NodeHandle& node, std::string& xml);
+
+/// The configured bodies' settings and the request's bodies, obstacles and walls applied to
+/// task.scene (horizon and intervals from the configuration); returns "" or why not.
+std::string applySceneFields(const NodeConfig& config, const SceneFields& request,
+                             fesd::SceneTask& task);
+
 /// The name of a pair's second member (body, obstacle or wall).
 std::string otherName(const fesd::DiscScene& scene, const fesd::ContactPair& pair);
 

@@ -10,6 +10,8 @@
 #include "fesd_trajopt/scene/scene_solver.h"
 #include "fesd_trajopt/solver/heap_policy.h"
 #include "fesd_trajopt/solver/stopwatch.h"
+#include "robot_request.h"
+#include "robot_solution.h"
 #include "scene_request.h"
 #include "solution_message.h"
 
@@ -43,6 +45,39 @@ Discretization discretization(const Request& request, const NodeConfig& config) 
 template <class Request>
 double wallTimeBudget(const Request& request, const NodeConfig& config) {
   return request.has_wall_time_budget ? request.wall_time_budget : config.wall_time_budget;
+}
+
+/// The discretisation, method, tolerance and budget of a plan request as solver options;
+/// returns "" or why the request is refused.
+std::string solveOptions(const fesd_trajopt::PlanRequest& request, const NodeConfig& config,
+                         fesd::OcpOptions& options) {
+  const Discretization grid = discretization(request, config);
+  if (!grid.error.empty()) return grid.error;
+  if (request.method > fesd_trajopt::PlanRequest::METHOD_STANDARD) {
+    return "unknown method " + std::to_string(request.method);
+  }
+  const double tolerance = request.has_complementarity_tolerance ? request.complementarity_tolerance
+                                                                 : config.complementarity_tolerance;
+  const double budget = wallTimeBudget(request, config);
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {
+    return "the complementarity tolerance must be > 0 and finite";
+  }
+  if (!(budget > 0.0)) return "the wall-time budget must be > 0";
+  if (!(request.target_accuracy >= 0.0) || !std::isfinite(request.target_accuracy)) {
+    return "the target accuracy must be >= 0 (0: off) and finite";
+  }
+  if (request.contact_pairs > fesd_trajopt::PlanRequest::PAIRS_ALL_IN_REACH) {
+    return "unknown contact_pairs " + std::to_string(request.contact_pairs);
+  }
+  options.discretization.num_elements = grid.elements;
+  options.discretization.num_stages = grid.stages;
+  options.discretization.switch_detection =
+      request.method == fesd_trajopt::PlanRequest::METHOD_DEFAULT
+          ? config.fesd
+          : request.method == fesd_trajopt::PlanRequest::METHOD_FESD;
+  options.homotopy.complementarity_tolerance = tolerance;
+  options.homotopy.wall_time_budget = budget;
+  return "";
 }
 
 template <class Response>
@@ -149,40 +184,22 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
                              const fesd::SolveMonitor* monitor,
                              fesd_trajopt::PlanTrajectoryResult& answer) {
   fesd::Stopwatch stopwatch;
+  std::string xml;
+  if (urdfSource(config_, sceneFields(request), private_node_, xml).empty() && isRobotUrdf(xml)) {
+    return handleRobotPlan(request, xml, answer);
+  }
+  if (!request.joints.empty()) {
+    return refuse(answer, "joints are given, but the scene's URDF has no moving joints");
+  }
   TaskBuild build = buildTask(config_, sceneFields(request), private_node_);
   if (!build.error.empty()) return refuse(answer, build.error);
   fesd::SceneTask& task = build.task;
   if (request.has_horizon) task.horizon = request.horizon;
   if (request.has_num_intervals) task.num_intervals = static_cast<int>(request.num_intervals);
-  const Discretization grid = discretization(request, config_);
-  if (!grid.error.empty()) return refuse(answer, grid.error);
-  if (request.method > fesd_trajopt::PlanRequest::METHOD_STANDARD) {
-    return refuse(answer, "unknown method " + std::to_string(request.method));
-  }
-  const double tolerance = request.has_complementarity_tolerance
-                               ? request.complementarity_tolerance
-                               : config_.complementarity_tolerance;
-  const double budget = wallTimeBudget(request, config_);
-  if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {
-    return refuse(answer, "the complementarity tolerance must be > 0 and finite");
-  }
-  if (!(budget > 0.0)) return refuse(answer, "the wall-time budget must be > 0");
-  if (!(request.target_accuracy >= 0.0) || !std::isfinite(request.target_accuracy)) {
-    return refuse(answer, "the target accuracy must be >= 0 (0: off) and finite");
-  }
   fesd::SceneSolveOptions options;
-  options.ocp.discretization.num_elements = grid.elements;
-  options.ocp.discretization.num_stages = grid.stages;
-  options.ocp.discretization.switch_detection =
-      request.method == fesd_trajopt::PlanRequest::METHOD_DEFAULT
-          ? config_.fesd
-          : request.method == fesd_trajopt::PlanRequest::METHOD_FESD;
-  options.ocp.homotopy.complementarity_tolerance = tolerance;
-  options.ocp.homotopy.wall_time_budget = budget;
+  const std::string problem = solveOptions(request, config_, options.ocp);
+  if (!problem.empty()) return refuse(answer, problem);
   options.verify = request.verify;
-  if (request.contact_pairs > fesd_trajopt::PlanRequest::PAIRS_ALL_IN_REACH) {
-    return refuse(answer, "unknown contact_pairs " + std::to_string(request.contact_pairs));
-  }
   options.lazy_pairs = request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_DEFAULT
                            ? config_.lazy_pairs
                            : request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_LAZY;
@@ -252,6 +269,11 @@ void TrajoptNode::publish(const fesd::SceneTask& task, const fesd_trajopt::Solut
   std::lock_guard<std::mutex> lock(publish_mutex_);
   solution_publisher_.publish(solution);
   marker_publisher_.publish(sceneMarkers(task, solution, config_.frame_id));
+  publishPaths(solution);
+  playback_.play(solution, task.scene.dimension() == 2);
+}
+
+void TrajoptNode::publishPaths(const fesd_trajopt::Solution& solution) {
   const std::vector<nav_msgs::Path> paths = bodyPaths(solution);
   for (size_t b = 0; b < paths.size(); ++b) {
     const std::string name = topicName(solution.bodies[b].name);
@@ -263,7 +285,6 @@ void TrajoptNode::publish(const fesd::SceneTask& task, const fesd_trajopt::Solut
     }
     found->second.publish(paths[b]);
   }
-  playback_.play(solution, task.scene.dimension() == 2);
 }
 
 void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
@@ -311,6 +332,13 @@ void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
     return refuse(response, "unknown system '" + request.system +
                                 "' (\"\" for the scene, or \"circle_example\")");
   }
+  std::string xml;
+  if (urdfSource(config_, sceneFields(request), private_node_, xml).empty() && isRobotUrdf(xml)) {
+    return handleRobotSimulate(request, xml, steps, options, response);
+  }
+  if (!request.joints.empty() || !request.joint_commands.joint_names.empty()) {
+    return refuse(response, "joints are given, but the scene's URDF has no moving joints");
+  }
   TaskBuild build = buildTask(config_, sceneFields(request), private_node_);
   if (!build.error.empty()) return refuse(response, build.error);
   fesd::SceneTask& task = build.task;
@@ -347,6 +375,139 @@ void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
   if (!outcome.invalid.empty()) return refuse(response, outcome.invalid);
   response.solution = sceneSolution(task, outcome);
   response.solution.message = outcome.message;
+  response.solution.header.stamp = ros::Time::now();
+  response.solution.header.frame_id = config_.frame_id;
+  response.solution.statistics.wall_time = stopwatch.wallSeconds();
+  finish(response, build.notes);
+}
+
+void TrajoptNode::handleRobotPlan(const fesd_trajopt::PlanRequest& request,
+                                  const std::string& urdf_xml,
+                                  fesd_trajopt::PlanTrajectoryResult& answer) {
+  fesd::Stopwatch stopwatch;
+  RobotTaskBuild build = buildRobotTask(
+      config_, sceneFields(request),
+      {request.joints, request.self_collision != 0, request.srdf_param}, urdf_xml, private_node_);
+  if (!build.error.empty()) return refuse(answer, build.error);
+  fesd::RobotTask& task = *build.task;
+  if (request.has_horizon) task.horizon = request.horizon;
+  if (request.has_num_intervals) task.num_intervals = static_cast<int>(request.num_intervals);
+  fesd::RobotSolveOptions options;
+  const std::string problem = solveOptions(request, config_, options.ocp);
+  if (!problem.empty()) return refuse(answer, problem);
+  if (request.target_accuracy > 0.0) {
+    return refuse(answer, "target_accuracy is not supported for robot scenes yet");
+  }
+  // All pairs in reach unless lazy ones are asked for: the core's default for robots (lazy
+  // pairs found another local optimum on the arm push, see RobotSolveOptions).
+  options.lazy_pairs = request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_LAZY;
+  options.pair_margin = config_.contact_margin;
+  options.verify = request.verify;
+  options.verification.num_stages = config_.verification_stages;
+  options.verification.num_elements = config_.verification_elements;
+  if (request.warm_start) build.notes.push_back("cold start: robot scenes are solved cold");
+  const fesd::RobotOutcome outcome = fesd::solveRobotTask(task, config_.limits, options);
+  if (!outcome.invalid.empty()) return refuse(answer, outcome.invalid);
+  int modelled = 0;
+  for (const fesd::RobotPairDecision& decision : outcome.decisions) modelled += decision.modelled;
+  ROS_INFO_STREAM("fesd_trajopt: solved a robot of "
+                  << task.scene.numJoints() << " joints and " << task.scene.robot().spheres.size()
+                  << " spheres with " << task.bodies.size() << " bodies, " << modelled
+                  << " modelled of " << outcome.decisions.size() << " pairs in "
+                  << outcome.pair_rounds << " round(s), " << task.num_intervals << " intervals");
+  fesd_trajopt::Solution& solution = answer.solution;
+  solution = robotSolution(task, outcome);
+  solution.status = statusCode(outcome.status);
+  solution.message = outcome.message;
+  solution.statistics.start = "robot guess";
+  solution.statistics.pair_rounds = outcome.pair_rounds;
+  solution.verified = request.verify && !std::isnan(outcome.verification_error);
+  if (solution.verified) solution.verification_error = outcome.verification_error;
+  solution.header.stamp = ros::Time::now();
+  solution.header.frame_id = config_.frame_id;
+  solution.statistics.wall_time = stopwatch.wallSeconds();
+  solution.statistics.cpu_time = stopwatch.cpuSeconds();
+  finish(answer, build.notes);
+  ROS_INFO_STREAM("fesd_trajopt: " << answer.message << " (" << stopwatch.wallSeconds() << " s)");
+  publishRobot(task, solution);
+}
+
+void TrajoptNode::publishRobot(const fesd::RobotTask& task,
+                               const fesd_trajopt::Solution& solution) {
+  std::lock_guard<std::mutex> lock(publish_mutex_);
+  solution_publisher_.publish(solution);
+  marker_publisher_.publish(robotMarkers(task, solution, config_.frame_id));
+  // The robot's root is the scene's origin: robot_state_publisher's TF tree hangs from it.
+  const std::string& root = task.scene.robot().root_link;
+  if (!root.empty() && root != config_.frame_id) {
+    geometry_msgs::TransformStamped frame;
+    frame.header.stamp = ros::Time::now();
+    frame.header.frame_id = config_.frame_id;
+    frame.child_frame_id = root;
+    frame.transform.rotation.w = 1.0;
+    frame_broadcaster_.sendTransform(frame);
+  }
+  publishPaths(solution);
+  playback_.play(solution, task.scene.dimension() == 2);
+}
+
+void TrajoptNode::handleRobotSimulate(const fesd_trajopt::Simulate::Request& request,
+                                      const std::string& urdf_xml, int steps,
+                                      const fesd::SimulationOptions& options,
+                                      fesd_trajopt::Simulate::Response& response) {
+  fesd::Stopwatch stopwatch;
+  if (!request.commands.empty()) {
+    return refuse(response, "robot scenes take joint_commands; body commands are not supported");
+  }
+  RobotTaskBuild build = buildRobotTask(config_, sceneFields(request), {request.joints, false, ""},
+                                        urdf_xml, private_node_);
+  if (!build.error.empty()) return refuse(response, build.error);
+  fesd::RobotTask& task = *build.task;
+  if (request.has_horizon) task.horizon = request.horizon;
+  task.num_intervals = steps;
+  const std::string invalid = fesd::validateRobotTask(task, config_.limits);
+  if (!invalid.empty()) return refuse(response, invalid);
+  const fesd::RobotScene& scene = task.scene;
+  std::vector<Eigen::VectorXd> controls(steps, Eigen::VectorXd::Zero(scene.controlSize()));
+  const trajectory_msgs::JointTrajectory& commands = request.joint_commands;
+  if (!commands.joint_names.empty() && commands.points.size() != 1 &&
+      static_cast<int>(commands.points.size()) != steps) {
+    return refuse(response, "joint_commands needs 1 or " + std::to_string(steps) + " points, got " +
+                                std::to_string(commands.points.size()));
+  }
+  for (size_t i = 0; i < commands.joint_names.size(); ++i) {
+    const int j = scene.robot().jointIndex(commands.joint_names[i]);
+    if (j < 0) {
+      return refuse(response, "joint_commands names '" + commands.joint_names[i] +
+                                  "', not a moving joint of the robot");
+    }
+    for (int k = 0; k < steps; ++k) {
+      const auto& point = commands.points[commands.points.size() == 1 ? 0 : k];
+      if (point.velocities.size() != commands.joint_names.size()) {
+        return refuse(response, "each point of joint_commands needs one velocity per joint name");
+      }
+      if (!std::isfinite(point.velocities[i])) {
+        return refuse(response,
+                      "the command of joint '" + commands.joint_names[i] + "' is not finite");
+      }
+      controls[k](j) = point.velocities[i];
+    }
+  }
+  // Every pair that can touch within the horizon is modelled (decideRobotPairs).
+  fesd::RobotOutcome outcome;
+  outcome.decisions = fesd::decideRobotPairs(task);
+  for (const fesd::RobotPairDecision& decision : outcome.decisions) {
+    if (decision.modelled) outcome.modelled.push_back(decision.pair);
+  }
+  fesd::FesdIntegrator integrator(scene.model(outcome.modelled), options);
+  const fesd::SimulationResult result =
+      integrator.simulate(scene.initialState(), task.horizon, steps, controls);
+  outcome.status = result.status;
+  outcome.trajectory = result.trajectory;
+  outcome.report = result.totals;
+  response.solution = robotSolution(task, outcome);
+  response.solution.status = statusCode(result.status);
+  response.solution.message = result.message;
   response.solution.header.stamp = ros::Time::now();
   response.solution.header.frame_id = config_.frame_id;
   response.solution.statistics.wall_time = stopwatch.wallSeconds();

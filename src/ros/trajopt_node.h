@@ -11,6 +11,8 @@
 #include <ros/ros.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
+#include "fesd_trajopt/integrator/fesd_integrator.h"
+#include "fesd_trajopt/scene/robot_task.h"
 #include "fesd_trajopt/scene/scene_solver.h"
 #include "node_config.h"
 #include "plan_action.h"
@@ -39,7 +41,16 @@ class TrajoptNode {
             fesd_trajopt::PlanTrajectoryResult& answer);
   void handlePlan(const fesd_trajopt::PlanRequest& request, const fesd::SolveMonitor* monitor,
                   fesd_trajopt::PlanTrajectoryResult& answer);
+  /// A plan request whose URDF is a robot (isRobotUrdf).
+  void handleRobotPlan(const fesd_trajopt::PlanRequest& request, const std::string& urdf_xml,
+                       fesd_trajopt::PlanTrajectoryResult& answer);
   void publish(const fesd::SceneTask& task, const fesd_trajopt::Solution& solution);
+  void publishRobot(const fesd::RobotTask& task, const fesd_trajopt::Solution& solution);
+  void publishPaths(const fesd_trajopt::Solution& solution);
+  void handleRobotSimulate(const fesd_trajopt::Simulate::Request& request,
+                           const std::string& urdf_xml, int steps,
+                           const fesd::SimulationOptions& options,
+                           fesd_trajopt::Simulate::Response& response);
   void handleSimulate(const fesd_trajopt::Simulate::Request& request,
                       fesd_trajopt::Simulate::Response& response);
 

@@ -1,0 +1,223 @@
+#include "robot_solution.h"
+
+#include <algorithm>
+#include <limits>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "fesd_trajopt/kinematics/forward_kinematics.h"
+#include "solution_message.h"
+
+namespace fesd_ros {
+namespace {
+
+std::string otherName(const fesd::RobotScene& scene, const fesd::RobotPair& pair) {
+  switch (pair.kind) {
+    case fesd::RobotPair::Kind::kBody:
+      return scene.collisionBodies()[pair.other].name;
+    case fesd::RobotPair::Kind::kObstacle:
+      return scene.discs().obstacles()[pair.other].name;
+    case fesd::RobotPair::Kind::kWall:
+      return scene.discs().walls()[pair.other].name;
+  }
+  return "";
+}
+
+/// A pair's two names, a robot sphere first (`<link>/sphere_<k>`, then the body it touches).
+std::pair<std::string, std::string> pairNames(const fesd::RobotScene& scene,
+                                              const fesd::RobotPair& pair) {
+  const fesd::CollisionBody& body = scene.collisionBodies()[pair.body];
+  const bool other_is_sphere =
+      pair.kind == fesd::RobotPair::Kind::kBody && scene.collisionBodies()[pair.other].sphere >= 0;
+  if (body.sphere < 0 && other_is_sphere) return {otherName(scene, pair), body.name};
+  return {body.name, otherName(scene, pair)};
+}
+
+fesd_trajopt::ContactPair pairMessage(const fesd::RobotScene& scene,
+                                      const fesd::RobotPairDecision& decision) {
+  fesd_trajopt::ContactPair message;
+  std::tie(message.first, message.second) = pairNames(scene, decision.pair);
+  message.reason = decision.reason;
+  message.min_distance = std::numeric_limits<double>::quiet_NaN();  // not measured per pair
+  return message;
+}
+
+geometry_msgs::Point point(const Eigen::VectorXd& p) {
+  geometry_msgs::Point result;
+  result.x = p(0);
+  result.y = p(1);
+  result.z = p.size() > 2 ? p(2) : 0.0;
+  return result;
+}
+
+/// The velocity of the actual motion (command plus the contacts' projection) at each element
+/// boundary: the DCS velocity at the boundary state with the multipliers of the element's stage
+/// there (Radau: its last stage is its end; the start takes the first element's first stage).
+std::vector<Eigen::VectorXd> boundaryVelocities(const fesd::RobotTask& task,
+                                                const fesd::RobotOutcome& outcome) {
+  const fesd::Trajectory& trajectory = outcome.trajectory;
+  std::vector<Eigen::VectorXd> velocities;
+  if (trajectory.elements.size() + 1 != trajectory.states.size()) return velocities;
+  const auto model = task.scene.model(outcome.modelled);
+  const int nx = model->stateSize(), nu = model->controlSize(), nc = model->constraintSize();
+  Eigen::VectorXd z(nx + nu + nc), v(nx);
+  for (size_t i = 0; i < trajectory.states.size(); ++i) {
+    const fesd::ElementValues& element = trajectory.elements[i == 0 ? 0 : i - 1];
+    const Eigen::MatrixXd& multipliers = element.stage_multipliers;
+    z.head(nx) = trajectory.states[i];
+    z.segment(nx, nu) = trajectory.controls[element.interval];
+    if (nc > 0) {
+      z.tail(nc) = multipliers.col(i == 0 ? 0 : multipliers.cols() - 1);
+    }
+    model->velocity()->evaluate(z.data(), v.data());
+    velocities.push_back(v);
+  }
+  return velocities;
+}
+
+/// sceneMarkers draws paths and labels for the node's default scene (metres across); a robot
+/// scene is a tenth of that: thinner paths, smaller labels stacked below the body touched.
+void fitToRobotScale(const fesd_trajopt::Solution& solution,
+                     visualization_msgs::MarkerArray& markers) {
+  constexpr double kPathWidth = 0.008, kLabelHeight = 0.03;
+  size_t label = 0;
+  for (visualization_msgs::Marker& m : markers.markers) {
+    if (m.ns == "paths") m.scale.x = kPathWidth;
+    if (m.ns != "switch_labels" || label >= solution.switches.size()) continue;
+    const fesd_trajopt::SwitchEvent& event = solution.switches[label];
+    for (const fesd_trajopt::BodyTrajectory& body : solution.bodies) {
+      if (body.name != event.second || body.positions.empty()) continue;
+      size_t k = 0;  // the element boundary at the switch
+      while (k + 1 < solution.times.size() && solution.times[k] < event.time - 1e-12) ++k;
+      m.pose.position = body.positions[std::min(k, body.positions.size() - 1)];
+      m.pose.position.y -= body.radius + 1.2 * kLabelHeight * (label + 1);
+    }
+    m.scale.z = kLabelHeight;
+    ++label;
+  }
+}
+
+}  // namespace
+
+fesd_trajopt::Solution robotSolution(const fesd::RobotTask& task,
+                                     const fesd::RobotOutcome& outcome) {
+  const fesd::RobotScene& scene = task.scene;
+  const fesd::DiscScene& discs = scene.discs();
+  const fesd::Trajectory& trajectory = outcome.trajectory;
+  const int dim = scene.dimension(), joints = scene.numJoints();
+  fesd_trajopt::Solution solution;
+  fillCommon(trajectory, outcome.report, solution);
+  for (int b = 0; b < static_cast<int>(discs.bodies().size()); ++b) {
+    fesd_trajopt::BodyTrajectory body;
+    body.name = discs.bodies()[b].name;
+    body.radius = discs.bodies()[b].radius;
+    body.actuated = discs.bodies()[b].actuated;
+    body.target_distance = b < static_cast<int>(outcome.target_distances.size())
+                               ? outcome.target_distances[b]
+                               : std::numeric_limits<double>::quiet_NaN();
+    for (const Eigen::VectorXd& x : trajectory.states) {
+      body.positions.push_back(point(x.segment(scene.bodyStateIndex(b), dim)));
+    }
+    if (body.actuated) {
+      for (const Eigen::VectorXd& u : trajectory.controls) {
+        const Eigen::VectorXd v = u.segment(joints + discs.controlIndex(b), dim);
+        geometry_msgs::Vector3 velocity;
+        velocity.x = v(0);
+        velocity.y = v(1);
+        velocity.z = dim > 2 ? v(2) : 0.0;
+        body.controls.push_back(velocity);
+      }
+    }
+    solution.bodies.push_back(body);
+  }
+  trajectory_msgs::JointTrajectory& motion = solution.joint_trajectory;
+  trajectory_msgs::JointTrajectory& commands = solution.joint_commands;
+  for (const fesd::KinematicJoint& joint : scene.robot().joints) {
+    motion.joint_names.push_back(joint.name);
+    commands.joint_names.push_back(joint.name);
+  }
+  const std::vector<Eigen::VectorXd> velocities = boundaryVelocities(task, outcome);
+  for (size_t i = 0; i < trajectory.states.size(); ++i) {
+    trajectory_msgs::JointTrajectoryPoint point;
+    const Eigen::VectorXd q = trajectory.states[i].head(joints);
+    point.positions.assign(q.data(), q.data() + joints);
+    if (i < velocities.size()) {
+      point.velocities.assign(velocities[i].data(), velocities[i].data() + joints);
+    }
+    point.time_from_start = ros::Duration(trajectory.times[i]);
+    motion.points.push_back(point);
+  }
+  for (size_t k = 0; k < trajectory.controls.size(); ++k) {
+    trajectory_msgs::JointTrajectoryPoint point;
+    const Eigen::VectorXd u = trajectory.controls[k].head(joints);
+    point.velocities.assign(u.data(), u.data() + joints);
+    if (k < trajectory.interval_times.size()) {
+      point.time_from_start = ros::Duration(trajectory.interval_times[k]);
+    }
+    commands.points.push_back(point);
+  }
+  for (const fesd::RobotPairDecision& decision : outcome.decisions) {
+    (decision.modelled  ? solution.modeled_pairs
+     : decision.checked ? solution.checked_pairs
+                        : solution.pruned_pairs)
+        .push_back(pairMessage(scene, decision));
+  }
+  for (const fesd::SwitchEvent& event : trajectory.switches) {
+    const fesd::RobotPair& pair = outcome.modelled[event.constraint];
+    fesd_trajopt::SwitchEvent message;
+    message.time = event.time;
+    std::tie(message.first, message.second) = pairNames(scene, pair);
+    message.kind = event.kind == fesd::SwitchEvent::Kind::kContact
+                       ? fesd_trajopt::SwitchEvent::CONTACT
+                       : fesd_trajopt::SwitchEvent::RELEASE;
+    solution.switches.push_back(message);
+  }
+  return solution;
+}
+
+visualization_msgs::MarkerArray robotMarkers(const fesd::RobotTask& task,
+                                             const fesd_trajopt::Solution& solution,
+                                             const std::string& frame_id) {
+  fesd::SceneTask objects;
+  objects.scene = task.scene.discs();
+  objects.bodies = task.bodies;
+  visualization_msgs::MarkerArray markers = sceneMarkers(objects, solution, frame_id);
+  fitToRobotScale(solution, markers);
+  const fesd::KinematicModel& robot = task.scene.robot();
+  const auto& points = solution.joint_trajectory.points;
+  if (points.empty()) return markers;
+  // After sceneMarkers' ids, so that no marker replaces another.
+  int id = static_cast<int>(markers.markers.size());
+  fesd::KinematicData data;
+  auto spheres = [&](const std::string& ns, size_t k, double alpha) {
+    const Eigen::VectorXd q =
+        Eigen::Map<const Eigen::VectorXd>(points[k].positions.data(), points[k].positions.size());
+    fesd::forwardKinematics(robot, q, data);
+    for (size_t s = 0; s < robot.spheres.size(); ++s) {
+      visualization_msgs::Marker m;
+      m.header.frame_id = frame_id;
+      m.header.stamp = solution.header.stamp;
+      m.ns = ns;
+      m.id = id++;
+      m.type = visualization_msgs::Marker::SPHERE;
+      m.action = visualization_msgs::Marker::ADD;
+      m.pose.orientation.w = 1.0;
+      m.pose.position = point(data.sphere_centres[s]);
+      m.scale.x = m.scale.y = m.scale.z = 2.0 * robot.spheres[s].radius;
+      m.color = bodyColor(true, alpha);
+      markers.markers.push_back(m);
+    }
+  };
+  spheres("robot_start", 0, 0.9);
+  spheres("robot_final", points.size() - 1, 0.5);
+  for (const fesd_trajopt::SwitchEvent& event : solution.switches) {
+    size_t k = 0;  // the element boundary at the switch
+    while (k + 1 < solution.times.size() && solution.times[k] < event.time - 1e-12) ++k;
+    spheres("robot_switch_configurations", std::min(k, points.size() - 1), 0.15);
+  }
+  return markers;
+}
+
+}  // namespace fesd_ros

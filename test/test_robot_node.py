@@ -1,0 +1,168 @@
+#!/usr/bin/python3
+"""Integration tests of the fesd_trajopt node on a robot scene: the shipped planar arm
+(config/robots/planar_arm.urdf, joints shoulder, elbow, wrist about z) pushing a disc, joint
+settings refused by name, a joint velocity command simulated, ~joint_states during playback."""
+import math
+import time
+import unittest
+
+import rospy
+import rostest
+from fesd_trajopt.msg import BodySpec, JointSpec, PlanRequest, Solution
+from fesd_trajopt.srv import Simulate, SimulateRequest, SolveTrajectory
+from geometry_msgs.msg import Point
+from sensor_msgs.msg import JointState
+from trajectory_msgs.msg import JointTrajectoryPoint
+from visualization_msgs.msg import MarkerArray
+
+SOLVE = "/fesd_trajopt/solve_trajectory"
+SIMULATE = "/fesd_trajopt/simulate"
+ARM = "/planar_arm"
+JOINTS = ["shoulder", "elbow", "wrist"]
+SPEED_LIMITS = [1.0, 1.5, 2.0]  # the URDF's <limit velocity>
+INTERVALS, ELEMENTS = 10, 2
+
+
+def arm_push_request():
+    """The shipped push (scene/robot_scenes.h): the arm from (-0.6, 0, 0) pushes a disc of
+    radius 0.05 from (0.6, 0) to (0.6, 0.2) in 2 s."""
+    request = PlanRequest()
+    request.urdf_param = ARM
+    request.bodies = [BodySpec(name="disc", add=True, radius=0.05,
+                               initial_position=Point(0.6, 0.0, 0.0), role=BodySpec.ROLE_PASSIVE,
+                               target=Point(0.6, 0.2, 0.0), target_weight=100.0)]
+    request.joints = [JointSpec(name="shoulder", has_initial_position=True, initial_position=-0.6)]
+    request.has_horizon, request.horizon = True, 2.0
+    request.has_num_intervals, request.num_intervals = True, INTERVALS
+    request.has_num_elements, request.num_elements = True, ELEMENTS
+    request.contact_pairs = PlanRequest.PAIRS_ALL_IN_REACH
+    request.verify = True
+    return request
+
+
+class RobotNodeTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_robot_node", anonymous=True)
+        rospy.wait_for_service(SOLVE, timeout=60.0)
+        cls.solve = rospy.ServiceProxy(SOLVE, SolveTrajectory)
+        cls.simulate = rospy.ServiceProxy(SIMULATE, Simulate)
+
+    def assert_invalid(self, request, *keywords):
+        response = self.solve(request)
+        self.assertEqual(response.status, Solution.INVALID_REQUEST, response.message)
+        for keyword in keywords:
+            self.assertIn(keyword, response.message)
+
+    def test_arm_pushes_the_disc_to_its_target(self):
+        markers = []
+        sub = rospy.Subscriber("/fesd_trajopt/markers", MarkerArray, markers.append)
+        states = []
+        joint_sub = rospy.Subscriber("/fesd_trajopt/joint_states", JointState, states.append)
+        start = time.time()
+        response = self.solve(arm_push_request())
+        seconds = time.time() - start
+        solution = response.solution
+        print("planar arm push through the node: status %d in %.2f s (%s), verification error "
+              "%.2e, switches %s" % (response.status, seconds, response.message,
+                                     solution.verification_error,
+                                     [(round(s.time, 4), s.first, s.second) for s in
+                                      solution.switches]))
+        self.assertEqual(response.status, Solution.SUCCESS, response.message)
+        disc = solution.bodies[0]
+        self.assertEqual(disc.name, "disc")
+        self.assertLess(math.hypot(disc.positions[-1].x - 0.6, disc.positions[-1].y - 0.2), 1e-3)
+        self.assertLess(disc.target_distance, 1e-3)
+        self.assertLess(solution.verification_error, 1e-3)
+        # A point per element boundary, at the solution's times, from the requested start.
+        motion = solution.joint_trajectory
+        self.assertEqual(list(motion.joint_names), JOINTS)
+        self.assertEqual(len(solution.times), INTERVALS * ELEMENTS + 1)
+        self.assertEqual(len(motion.points), len(solution.times))
+        for point, t in zip(motion.points, solution.times):
+            self.assertAlmostEqual(point.time_from_start.to_sec(), t, places=6)
+            self.assertEqual(len(point.positions), 3)
+            self.assertEqual(len(point.velocities), 3)
+        self.assertAlmostEqual(motion.points[0].positions[0], -0.6, places=12)
+        # The commands: one per control interval, within the URDF's speed limits.
+        commands = solution.joint_commands
+        self.assertEqual(list(commands.joint_names), JOINTS)
+        self.assertEqual(len(commands.points), INTERVALS)
+        for point in commands.points:
+            for u, limit in zip(point.velocities, SPEED_LIMITS):
+                self.assertLessEqual(abs(u), limit + 1e-6)
+        # Contacts name a sphere of the arm and the disc.
+        contacts = [s for s in solution.switches if s.kind == s.CONTACT]
+        self.assertTrue(contacts)
+        for event in contacts:
+            link, sphere = event.first.split("/")
+            self.assertIn(link, ["upper_arm", "forearm", "hand"])
+            self.assertTrue(sphere.startswith("sphere_"), event.first)
+            self.assertEqual(event.second, "disc")
+        # The markers show the arm's spheres at the start, the end and every switch.
+        deadline = time.time() + 5.0
+        while not markers and time.time() < deadline:
+            rospy.sleep(0.1)
+        namespaces = {}
+        for marker in markers[-1].markers:
+            namespaces[marker.ns] = namespaces.get(marker.ns, 0) + 1
+        spheres = 1 + 3 + 3 + 2
+        self.assertEqual(namespaces.get("robot_start"), spheres)
+        self.assertEqual(namespaces.get("robot_final"), spheres)
+        self.assertEqual(namespaces.get("robot_switch_configurations"),
+                         spheres * len(solution.switches))
+        # The playback publishes the joints, moving along the plan.
+        deadline = time.time() + 5.0
+        while len(states) < 10 and time.time() < deadline:
+            rospy.sleep(0.1)
+        sub.unregister()
+        joint_sub.unregister()
+        self.assertGreaterEqual(len(states), 10)
+        self.assertEqual(list(states[-1].name), JOINTS)
+        shoulders = [s.position[0] for s in states]
+        low = min(p.positions[0] for p in motion.points)
+        high = max(p.positions[0] for p in motion.points)
+        for q in shoulders:
+            self.assertTrue(low - 1e-9 <= q <= high + 1e-9, (q, low, high))
+        self.assertGreater(max(shoulders) - min(shoulders), 1e-3)  # it moves
+
+    def test_joint_settings_are_checked(self):
+        request = arm_push_request()
+        request.joints.append(JointSpec(name="knee"))
+        self.assert_invalid(request, "joint 'knee'", "shoulder, elbow, wrist")
+        request = arm_push_request()
+        request.joints.append(JointSpec(name="elbow", max_velocity=float("nan")))
+        self.assert_invalid(request, "joint 'elbow'", "NaN")
+        request = arm_push_request()
+        request.joints.append(JointSpec(name="elbow", has_bounds=True, lower=0.1, upper=1.0))
+        self.assert_invalid(request, "joint 'elbow' starts at 0, outside its bounds")
+        request = arm_push_request()
+        request.joints.append(JointSpec(name="wrist", role=BodySpec.ROLE_PASSIVE))
+        self.assert_invalid(request, "joint 'wrist'", "passive")
+        request = arm_push_request()
+        request.bodies[0].add = False
+        self.assert_invalid(request, "body 'disc'")
+
+    def test_a_joint_turns_at_its_commanded_speed(self):
+        request = SimulateRequest()
+        request.urdf_param = ARM
+        request.has_horizon, request.horizon = True, 1.0
+        request.has_num_steps, request.num_steps = True, 4
+        request.joint_commands.joint_names = ["elbow"]
+        request.joint_commands.points = [JointTrajectoryPoint(velocities=[0.7])]
+        response = self.simulate(request)
+        self.assertEqual(response.status, Solution.SUCCESS, response.message)
+        end = response.solution.joint_trajectory.points[-1].positions
+        self.assertAlmostEqual(end[1], 0.7, delta=1e-9)
+        self.assertAlmostEqual(end[0], 0.0, delta=1e-12)
+        self.assertAlmostEqual(end[2], 0.0, delta=1e-12)
+        self.assertAlmostEqual(response.solution.joint_trajectory.points[-1].velocities[1], 0.7,
+                               delta=1e-9)
+        request.joint_commands.joint_names = ["knee"]
+        response = self.simulate(request)
+        self.assertEqual(response.status, Solution.INVALID_REQUEST)
+        self.assertIn("'knee'", response.message)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("fesd_trajopt", "robot_node", RobotNodeTest)
