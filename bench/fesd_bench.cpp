@@ -59,8 +59,8 @@ const std::map<std::string, Command>& commands() {
         "A shipped robot push (scene/robot_scenes.h) after the showcase: status, wall time and\n"
         "    ratio, Ipopt iterations per homotopy step, pairs, NLP size, target distance, gaps,\n"
         "    contact and release times per pair. --robot=panda|planar_arm --pairs=lazy|all\n"
-        "    --intervals --horizon --elements --stages --budget=150 --margin --showcase=true\n"
-        "    and the homotopy/Ipopt options of ocp-manipulation"}},
+        "    --intervals --horizon --elements --stages --budget=150 --margin --verify=true\n"
+        "    --showcase=true and the homotopy/Ipopt options of ocp-manipulation"}},
       {"planning-sweep",
        {fesd_bench::planningSweep,
         "Seeded random planning scenes (families: push, wall, beside, second, showcase,\n"

@@ -52,6 +52,7 @@ int robotPush(const Arguments& args) {
   const std::string pairs = args.text("pairs", "lazy");
   options.lazy_pairs = pairs == "lazy";
   options.pair_margin = args.number("margin", options.pair_margin);
+  options.verify = args.flag("verify", options.verify);
   applyHomotopyArguments(args, options.ocp.homotopy);
   const bool with_showcase = args.flag("showcase", true);
   args.rejectUnused();
