@@ -122,6 +122,11 @@ int robotPush(const Arguments& args) {
       "in the re-simulation %.2e; verification error %.2e\n",
       outcome.target_distances[0], fesd::smallestBoundaryGap(scene, in_reach, outcome.trajectory),
       outcome.verification_gap, outcome.verification_error);
+  // Enough digits to compare plans across BLAS builds (tools/with_blas.sh).
+  const Eigen::VectorXd end = outcome.trajectory.finalState();
+  std::printf("  objective %.12g; end state", outcome.report.objective);
+  for (int i = 0; i < end.size(); ++i) std::printf(" %.9f", end(i));
+  std::printf("\n");
   for (const fesd::SwitchEvent& event : outcome.trajectory.switches) {
     std::printf("  %s of %s at t = %.4f\n", fesd::SwitchEvent::kindName(event.kind).c_str(),
                 scene.pairName(outcome.modelled[event.constraint]).c_str(), event.time);
