@@ -76,7 +76,7 @@ TEST(RobotPush, PandaPushesThePuckAcrossTheTable) {
   for (const fesd::RobotPairDecision& decision : outcome.decisions) {
     if (decision.modelled || decision.checked) in_reach.push_back(decision.pair);
   }
-  EXPECT_EQ(in_reach.size(), 118u);  // every sphere against the puck and the table
+  EXPECT_EQ(in_reach.size(), 118u);  // spheres on the puck and the table; the puck on the table
   const double gap = fesd::smallestBoundaryGap(task.scene, in_reach, outcome.trajectory);
   EXPECT_GT(gap, -1e-8);
   int puck_contacts = 0;
