@@ -18,5 +18,6 @@ int simulationSweep(const Arguments& args);
 int replan(const Arguments& args);
 int planningSweep(const Arguments& args);
 int kkt(const Arguments& args);
+int robotPush(const Arguments& args);
 
 }  // namespace fesd_bench

@@ -54,6 +54,13 @@ const std::map<std::string, Command>& commands() {
         "    time, CSV. --intervals=30 --stages=1,2,3,4 --elements=1,2,3,4\n"
         "    --methods=fesd,standard --budget=120 (s per solve) --reference-stages=4\n"
         "    --reference-elements=8 --start=plan|constant (first guess)"}},
+      {"robot-push",
+       {fesd_bench::robotPush,
+        "A shipped robot push (scene/robot_scenes.h) after the showcase: status, wall time and\n"
+        "    ratio, Ipopt iterations per homotopy step, pairs, NLP size, target distance, gaps,\n"
+        "    contact and release times per pair. --robot=panda|planar_arm --pairs=lazy|all\n"
+        "    --intervals --horizon --elements --stages --budget=150 --margin --verify=true\n"
+        "    --showcase=true and the homotopy/Ipopt options of ocp-manipulation"}},
       {"planning-sweep",
        {fesd_bench::planningSweep,
         "Seeded random planning scenes (families: push, wall, beside, second, showcase,\n"

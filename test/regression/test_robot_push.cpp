@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -49,5 +50,52 @@ TEST_P(RobotPush, PlanarArmPushesTheDiscToItsTarget) {
 }
 
 INSTANTIATE_TEST_SUITE_P(LazyAndAll, RobotPush, ::testing::Bool());
+
+}  // namespace
+
+namespace {
+
+// The shipped Panda push (59 spheres) with lazy pairs, planned without the re-simulation as the
+// planning sweep times plans: the puck ends at its target, no sphere of the robot is inside the
+// puck or the table at any element boundary (every pair in reach, modelled or checked), and the
+// contact that pushes the puck is reported with its time.
+TEST(RobotPush, PandaPushesThePuckAcrossTheTable) {
+  const fesd::RobotTask task = fesd::pandaPushTask(std::make_shared<const fesd::KinematicModel>(
+      fesd_test::loadShippedRobot("panda_spherized.urdf")));
+  const auto start = std::chrono::steady_clock::now();
+  fesd::RobotSolveOptions options;
+  options.lazy_pairs = true;
+  options.verify = false;
+  const fesd::RobotOutcome outcome = fesd::solveRobotTask(task, {}, options);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(outcome.invalid, "");
+  ASSERT_EQ(outcome.status, fesd::SolveStatus::kSuccess) << outcome.message;
+  EXPECT_LT(outcome.target_distances[0], 1e-3);
+  std::vector<fesd::RobotPair> in_reach;
+  for (const fesd::RobotPairDecision& decision : outcome.decisions) {
+    if (decision.modelled || decision.checked) in_reach.push_back(decision.pair);
+  }
+  EXPECT_EQ(in_reach.size(), 118u);  // spheres on the puck and the table; the puck on the table
+  const double gap = fesd::smallestBoundaryGap(task.scene, in_reach, outcome.trajectory);
+  EXPECT_GT(gap, -1e-8);
+  int puck_contacts = 0;
+  for (const fesd::SwitchEvent& event : outcome.trajectory.switches) {
+    const fesd::RobotPair& pair = outcome.modelled[event.constraint];
+    if (pair.kind == fesd::RobotPair::Kind::kBody &&
+        event.kind == fesd::SwitchEvent::Kind::kContact) {
+      ++puck_contacts;
+      EXPECT_GT(event.time, 0.0);
+      EXPECT_LT(event.time, task.horizon);
+    }
+  }
+  EXPECT_GE(puck_contacts, 1);
+  std::printf(
+      "panda push: %.2f s, %d Ipopt iterations, objective %.6g, %zu modelled pairs in %d "
+      "rounds, target %.2e, boundary gap %.2e, pusher %s\n",
+      seconds, outcome.report.iterations, outcome.report.objective, outcome.modelled.size(),
+      outcome.pair_rounds, outcome.target_distances[0], gap,
+      task.scene.robot().spheres[outcome.pusher_sphere].name.c_str());
+}
 
 }  // namespace

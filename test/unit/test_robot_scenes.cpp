@@ -1,6 +1,8 @@
 // The shipped robot scenes (scene/robot_scenes.cpp): the planar-arm push is a valid task whose
-// disc is in reach of the arm and apart from it at the start.
+// disc is in reach of the arm and apart from it at the start; the Panda push is a valid spatial
+// task with 118 pairs in reach, no sphere touching the puck or the table at the start.
 #include <memory>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -21,6 +23,27 @@ TEST(RobotScenes, PlanarArmPushIsValidAndInReach) {
   EXPECT_GT(modelled_with_disc, 0);
   // The target is within the arm's reach (0.9 less the hand's sphere and the disc).
   EXPECT_LT(task.bodies[0].target.norm(), 0.9 - 0.1);
+}
+
+TEST(RobotScenes, PandaPushIsValidSpatialAndInReach) {
+  const fesd::RobotTask task = fesd::pandaPushTask(std::make_shared<const fesd::KinematicModel>(
+      fesd_test::loadShippedRobot("panda_spherized.urdf")));
+  EXPECT_EQ(fesd::validateRobotTask(task, {}), "");
+  EXPECT_EQ(task.scene.dimension(), 3);
+  EXPECT_EQ(task.scene.robot().spheres.size(), 59u);
+  const std::vector<fesd::RobotPairDecision> decisions = fesd::decideRobotPairs(task);
+  int in_reach = 0;
+  for (const fesd::RobotPairDecision& d : decisions) {
+    in_reach += d.modelled;
+    // The puck rests on the table; every sphere of the robot starts apart from both.
+    const double gap = task.scene.pairGap(d.pair, task.scene.initialState());
+    if (task.scene.pairName(d.pair) == "puck/table") {
+      EXPECT_NEAR(gap, 0.0, 1e-15);
+    } else {
+      EXPECT_GT(gap, 0.0) << task.scene.pairName(d.pair);
+    }
+  }
+  EXPECT_EQ(in_reach, 118);  // the robot's spheres against the puck and the table in reach
 }
 
 }  // namespace

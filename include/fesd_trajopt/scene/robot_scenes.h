@@ -12,4 +12,10 @@ namespace fesd {
 /// at their URDF speed limits; no joint targets.
 RobotTask planarArmPushTask(std::shared_ptr<const KinematicModel> arm);
 
+/// The shipped Panda push (config/robots/panda_spherized.urdf, VAMP's 59 spheres): from the
+/// ready pose q0 = (0, -0.785, 0, -2.356, 0, 1.571, 0.785) the arm pushes a puck (a sphere of
+/// radius 0.05 resting on the table z >= 0) from (0.45, 0, 0.05) to (0.65, 0, 0.05) (weight 100)
+/// within 2 s on 5 control intervals, the joints at their URDF speed limits; no joint targets.
+RobotTask pandaPushTask(std::shared_ptr<const KinematicModel> panda);
+
 }  // namespace fesd

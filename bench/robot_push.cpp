@@ -1,0 +1,137 @@
+// robot-push: a shipped robot push (scene/robot_scenes.h) solved as solveRobotTask solves it,
+// after the showcase in the same process for the time ratio: status, wall time, Ipopt iterations
+// per homotopy step, pairs in reach / modelled / checked / rounds, the NLP's size, the puck's
+// distance from its target, the smallest gaps at the element boundaries (every pair in reach)
+// and in the re-simulation, and the contact and release times per modelled pair.
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bench_args.h"
+#include "commands.h"
+#include "fesd_trajopt/examples/manipulation_example.h"
+#include "fesd_trajopt/ocp/ocp_solver.h"
+#include "fesd_trajopt/scene/robot_scenes.h"
+#include "fesd_trajopt/scene/robot_solver.h"
+#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/solver/stopwatch.h"
+
+namespace fesd_bench {
+namespace {
+
+std::shared_ptr<const fesd::KinematicModel> shippedRobot(const std::string& file) {
+  std::ifstream stream(std::string(FESD_ROBOTS_DIR) + "/" + file);
+  std::stringstream text;
+  text << stream.rdbuf();
+  const fesd::KinematicModelResult built = fesd::buildKinematicModel(text.str());
+  if (!built.error.empty()) throw std::runtime_error(file + ": " + built.error);
+  return std::make_shared<const fesd::KinematicModel>(built.model);
+}
+
+}  // namespace
+
+int robotPush(const Arguments& args) {
+  const std::string robot = args.text("robot", "panda");
+  fesd::RobotTask task =
+      robot == "panda"        ? fesd::pandaPushTask(shippedRobot("panda_spherized.urdf"))
+      : robot == "planar_arm" ? fesd::planarArmPushTask(shippedRobot("planar_arm.urdf"))
+                              : throw std::invalid_argument("--robot=panda|planar_arm");
+  task.num_intervals = args.integer("intervals", task.num_intervals);
+  task.horizon = args.number("horizon", task.horizon);
+  fesd::RobotSolveOptions options;
+  options.ocp.discretization.num_elements =
+      args.integer("elements", options.ocp.discretization.num_elements);
+  options.ocp.discretization.num_stages =
+      args.integer("stages", options.ocp.discretization.num_stages);
+  options.ocp.homotopy.wall_time_budget = args.number("budget", 150.0);
+  const std::string pairs = args.text("pairs", "lazy");
+  options.lazy_pairs = pairs == "lazy";
+  options.pair_margin = args.number("margin", options.pair_margin);
+  options.verify = args.flag("verify", options.verify);
+  applyHomotopyArguments(args, options.ocp.homotopy);
+  const bool with_showcase = args.flag("showcase", true);
+  args.rejectUnused();
+  if (pairs != "lazy" && pairs != "all") throw std::invalid_argument("--pairs=lazy|all");
+
+  double showcase_seconds = 0.0;
+  if (with_showcase) {
+    // Timed as planning-sweep times it: the node's scene solve with 3 elements and 2 stages.
+    fesd::SceneSolveOptions showcase_options;
+    showcase_options.ocp.discretization.num_elements = 3;
+    showcase_options.ocp.discretization.num_stages = 2;
+    fesd::Stopwatch stopwatch;
+    const fesd::SceneOutcome showcase = fesd::solveSceneTask(fesd::manipulation_example::task(40),
+                                                             fesd::TaskLimits{}, showcase_options);
+    showcase_seconds = stopwatch.wallSeconds();
+    std::printf("showcase: %s, %d Ipopt iterations (%.3f ms each), objective %.6g, %.3f s\n",
+                fesd::statusName(showcase.status).c_str(), showcase.report.iterations,
+                1e3 * (showcase.report.ipopt_seconds + showcase.report.evaluation_seconds) /
+                    std::max(1, showcase.report.iterations),
+                showcase.report.objective, showcase_seconds);
+  }
+
+  fesd::Stopwatch stopwatch;
+  const fesd::RobotOutcome outcome = fesd::solveRobotTask(task, fesd::TaskLimits{}, options);
+  const double seconds = stopwatch.wallSeconds();
+  if (!outcome.invalid.empty()) {
+    std::printf("refused: %s\n", outcome.invalid.c_str());
+    return 1;
+  }
+  const fesd::RobotScene& scene = task.scene;
+  std::vector<fesd::RobotPair> in_reach;
+  int checked = 0;
+  for (const fesd::RobotPairDecision& decision : outcome.decisions) {
+    if (decision.modelled || decision.checked) in_reach.push_back(decision.pair);
+    checked += decision.checked;
+  }
+  const fesd::OcpDefinition ocp = fesd::buildRobotOcp(task, outcome.modelled);
+  const fesd::OcpSolver last_round(ocp, options.ocp);
+  const fesd::NlpAssembly& nlp = last_round.discretization().nlp();
+  std::printf("%s push (%s pairs, %d intervals x %d elements x %d stages, T = %g s): %s in %.2f s",
+              robot.c_str(), pairs.c_str(), task.num_intervals,
+              options.ocp.discretization.num_elements, options.ocp.discretization.num_stages,
+              task.horizon, fesd::statusName(outcome.status).c_str(), seconds);
+  if (showcase_seconds > 0.0) std::printf(" = %.1fx the showcase", seconds / showcase_seconds);
+  std::printf(
+      "\n  %d Ipopt iterations (%.3f ms each; Ipopt %.2f s, evaluations %.2f s; the rest is the "
+      "guess, pair checks and verification), objective %.6g\n",
+      outcome.report.iterations,
+      1e3 * (outcome.report.ipopt_seconds + outcome.report.evaluation_seconds) /
+          std::max(1, outcome.report.iterations),
+      outcome.report.ipopt_seconds, outcome.report.evaluation_seconds, outcome.report.objective);
+  std::printf("  last NLP: %d variables, %d constraints, %d complementarities\n",
+              nlp.numVariables(), nlp.numConstraints(), nlp.numComplementarities());
+  std::printf("  pairs: %zu in reach, %zu modelled, %d checked, %d rounds; pusher %s\n",
+              in_reach.size(), outcome.modelled.size(), checked, outcome.pair_rounds,
+              outcome.pusher_sphere >= 0 ? scene.robot().spheres[outcome.pusher_sphere].name.c_str()
+                                         : "none");
+  std::printf("  homotopy steps (sigma: iterations, Ipopt status, s):");
+  for (const fesd::HomotopyStep& step : outcome.report.history) {
+    std::printf(" %.1e:%d:%s:%.2f", step.sigma, step.iterations, step.ipopt_status.c_str(),
+                step.wall_seconds);
+  }
+  std::printf("\n");
+  if (outcome.trajectory.states.empty()) return 1;
+  std::printf(
+      "  target distance %.2e; smallest gap at the element boundaries %.2e (every pair in reach), "
+      "in the re-simulation %.2e; verification error %.2e\n",
+      outcome.target_distances[0], fesd::smallestBoundaryGap(scene, in_reach, outcome.trajectory),
+      outcome.verification_gap, outcome.verification_error);
+  // Enough digits to compare plans across BLAS builds (tools/with_blas.sh).
+  const Eigen::VectorXd end = outcome.trajectory.finalState();
+  std::printf("  objective %.12g; end state", outcome.report.objective);
+  for (int i = 0; i < end.size(); ++i) std::printf(" %.9f", end(i));
+  std::printf("\n");
+  for (const fesd::SwitchEvent& event : outcome.trajectory.switches) {
+    std::printf("  %s of %s at t = %.4f\n", fesd::SwitchEvent::kindName(event.kind).c_str(),
+                scene.pairName(outcome.modelled[event.constraint]).c_str(), event.time);
+  }
+  return outcome.status == fesd::SolveStatus::kSuccess ? 0 : 1;
+}
+
+}  // namespace fesd_bench
