@@ -44,14 +44,6 @@ fesd_trajopt::ContactPair pairMessage(const fesd::RobotScene& scene,
   return message;
 }
 
-geometry_msgs::Point point(const Eigen::VectorXd& p) {
-  geometry_msgs::Point result;
-  result.x = p(0);
-  result.y = p(1);
-  result.z = p.size() > 2 ? p(2) : 0.0;
-  return result;
-}
-
 /// The velocity of the actual motion (command plus the contacts' projection) at each element
 /// boundary: the DCS velocity at the boundary state with the multipliers of the element's stage
 /// there (Radau: its last stage is its end; the start takes the first element's first stage).
@@ -106,31 +98,13 @@ fesd_trajopt::Solution robotSolution(const fesd::RobotTask& task,
   const fesd::RobotScene& scene = task.scene;
   const fesd::DiscScene& discs = scene.discs();
   const fesd::Trajectory& trajectory = outcome.trajectory;
-  const int dim = scene.dimension(), joints = scene.numJoints();
+  const int joints = scene.numJoints();
   fesd_trajopt::Solution solution;
   fillCommon(trajectory, outcome.report, solution);
   for (int b = 0; b < static_cast<int>(discs.bodies().size()); ++b) {
-    fesd_trajopt::BodyTrajectory body;
-    body.name = discs.bodies()[b].name;
-    body.radius = discs.bodies()[b].radius;
-    body.actuated = discs.bodies()[b].actuated;
-    body.target_distance = b < static_cast<int>(outcome.target_distances.size())
-                               ? outcome.target_distances[b]
-                               : std::numeric_limits<double>::quiet_NaN();
-    for (const Eigen::VectorXd& x : trajectory.states) {
-      body.positions.push_back(point(x.segment(scene.bodyStateIndex(b), dim)));
-    }
-    if (body.actuated) {
-      for (const Eigen::VectorXd& u : trajectory.controls) {
-        const Eigen::VectorXd v = u.segment(joints + discs.controlIndex(b), dim);
-        geometry_msgs::Vector3 velocity;
-        velocity.x = v(0);
-        velocity.y = v(1);
-        velocity.z = dim > 2 ? v(2) : 0.0;
-        body.controls.push_back(velocity);
-      }
-    }
-    solution.bodies.push_back(body);
+    solution.bodies.push_back(
+        bodyTrajectory(discs.bodies()[b], targetDistance(outcome.target_distances, b), trajectory,
+                       scene.bodyStateIndex(b), joints + discs.controlIndex(b)));
   }
   trajectory_msgs::JointTrajectory& motion = solution.joint_trajectory;
   trajectory_msgs::JointTrajectory& commands = solution.joint_commands;

@@ -20,10 +20,6 @@ XyzMessage xyz(const Eigen::VectorXd& v) {
   return result;
 }
 
-geometry_msgs::Point point(const Eigen::VectorXd& p) {
-  return xyz<geometry_msgs::Point>(p);
-}
-
 fesd_trajopt::ContactPair pairMessage(const fesd::DiscScene& scene,
                                       const fesd::PairDecision& decision) {
   fesd_trajopt::ContactPair message;
@@ -44,6 +40,35 @@ std_msgs::ColorRGBA color(double r, double g, double b, double a) {
 }
 
 }  // namespace
+
+geometry_msgs::Point point(const Eigen::VectorXd& p) {
+  return xyz<geometry_msgs::Point>(p);
+}
+
+double targetDistance(const std::vector<double>& distances, int body) {
+  return body < static_cast<int>(distances.size()) ? distances[body]
+                                                   : std::numeric_limits<double>::quiet_NaN();
+}
+
+fesd_trajopt::BodyTrajectory bodyTrajectory(const fesd::SceneBody& body, double target_distance,
+                                            const fesd::Trajectory& trajectory, int state_index,
+                                            int control_index) {
+  const int dim = static_cast<int>(body.position.size());
+  fesd_trajopt::BodyTrajectory message;
+  message.name = body.name;
+  message.radius = body.radius;
+  message.actuated = body.actuated;
+  message.target_distance = target_distance;
+  for (const Eigen::VectorXd& x : trajectory.states) {
+    message.positions.push_back(point(x.segment(state_index, dim)));
+  }
+  if (body.actuated) {
+    for (const Eigen::VectorXd& u : trajectory.controls) {
+      message.controls.push_back(xyz<geometry_msgs::Vector3>(u.segment(control_index, dim)));
+    }
+  }
+  return message;
+}
 
 std_msgs::ColorRGBA bodyColor(bool actuated, double alpha) {
   return actuated ? color(0.2, 0.45, 0.85, alpha) : color(0.95, 0.55, 0.1, alpha);
@@ -135,26 +160,12 @@ fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
   const fesd::Trajectory& trajectory = outcome.trajectory;
   const fesd::MpccReport& report = outcome.report;
   const std::vector<fesd::PairDecision>& decisions = outcome.decisions;
-  const int dim = scene.dimension();
   fesd_trajopt::Solution solution;
   fillCommon(trajectory, report, solution);
   for (int b = 0; b < static_cast<int>(scene.bodies().size()); ++b) {
-    fesd_trajopt::BodyTrajectory body;
-    body.name = scene.bodies()[b].name;
-    body.radius = scene.bodies()[b].radius;
-    body.actuated = scene.bodies()[b].actuated;
-    body.target_distance = b < static_cast<int>(outcome.target_distances.size())
-                               ? outcome.target_distances[b]
-                               : std::numeric_limits<double>::quiet_NaN();
-    for (const Eigen::VectorXd& x : trajectory.states) {
-      body.positions.push_back(point(x.segment(scene.stateIndex(b), dim)));
-    }
-    if (body.actuated) {
-      for (const Eigen::VectorXd& u : trajectory.controls) {
-        body.controls.push_back(xyz<geometry_msgs::Vector3>(u.segment(scene.controlIndex(b), dim)));
-      }
-    }
-    solution.bodies.push_back(body);
+    solution.bodies.push_back(
+        bodyTrajectory(scene.bodies()[b], targetDistance(outcome.target_distances, b), trajectory,
+                       scene.stateIndex(b), scene.controlIndex(b)));
   }
   std::vector<fesd::ContactPair> modelled;
   for (const fesd::PairDecision& decision : decisions) {

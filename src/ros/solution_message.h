@@ -29,6 +29,19 @@ void setUnsolved(Answer& answer, uint8_t status, const std::string& message) {
 fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
                                      const fesd::SceneOutcome& outcome);
 
+/// A point from a planar (z = 0) or spatial vector.
+geometry_msgs::Point point(const Eigen::VectorXd& p);
+
+/// A body's distance from its target, NaN when it has none (or the outcome was not judged).
+double targetDistance(const std::vector<double>& distances, int body);
+
+/// A body's part of a solution: name, radius, role, distance from its target, positions at the
+/// element boundaries (from the states at state_index) and, if actuated, its controls (at
+/// control_index).
+fesd_trajopt::BodyTrajectory bodyTrajectory(const fesd::SceneBody& body, double target_distance,
+                                            const fesd::Trajectory& trajectory, int state_index,
+                                            int control_index);
+
 /// The parts every solution has: times, steps, full states, statistics.
 void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& report,
                 fesd_trajopt::Solution& solution);
