@@ -143,6 +143,19 @@ class RobotNodeTest(unittest.TestCase):
         request.bodies[0].add = False
         self.assert_invalid(request, "body 'disc'")
 
+    def test_a_missing_or_broken_srdf_is_refused_and_the_node_keeps_serving(self):
+        request = arm_push_request()
+        request.self_collision, request.srdf_param = True, "/no/such/srdf"
+        self.assert_invalid(request, "no parameter '/no/such/srdf' holds an SRDF")
+        rospy.set_param("/broken_srdf", '<robot name="arm"><disable_collisions link1="hand"')
+        request.srdf_param = "/broken_srdf"
+        self.assert_invalid(request, "SRDF '/broken_srdf': malformed SRDF")
+        rospy.set_param("/srdf_without_robot", "<group/>")
+        request.srdf_param = "/srdf_without_robot"
+        self.assert_invalid(request, "malformed SRDF: no <robot> element")
+        response = self.solve(arm_push_request())
+        self.assertEqual(response.status, Solution.SUCCESS, response.message)
+
     def test_a_joint_turns_at_its_commanded_speed(self):
         request = SimulateRequest()
         request.urdf_param = ARM
