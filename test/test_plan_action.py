@@ -20,9 +20,10 @@ from test_node_services import SOLVE, small_default
 PLAN = "/fesd_trajopt/plan"
 
 
-def moved_target(dx, warm_start=False):
-    """The default scene with the object's target (0, 10) moved by dx along x."""
-    request = PlanRequest(warm_start=warm_start)
+def moved_target(dx, warm_start=False, target_accuracy=-1.0):
+    """The default scene with the object's target (0, 10) moved by dx along x; unverified unless
+    a target accuracy is given."""
+    request = PlanRequest(warm_start=warm_start, target_accuracy=target_accuracy)
     request.bodies = [BodySpec(name="object", target=Point(dx, 10.0, 0.0), target_weight=1000.0)]
     return request
 
@@ -156,6 +157,18 @@ class PlanAction(unittest.TestCase):
         self.assertFalse(fallback.solution.statistics.warm_started)
         self.assertIn("cold start: the discretisations differ", fallback.message)
 
+    def test_replanning_to_the_default_accuracy_starts_warm_on_the_rung_the_last_plan_needed(self):
+        first = self.solve(moved_target(0.3, target_accuracy=0.0))
+        self.assertEqual(first.status, Solution.SUCCESS, first.message)
+        needed = (first.solution.refinements[-1].num_stages,
+                  first.solution.refinements[-1].num_elements)
+        replan = self.solve(moved_target(0.35, warm_start=True, target_accuracy=0.0))
+        self.assertEqual(replan.status, Solution.SUCCESS, replan.message)
+        self.assertTrue(replan.solution.statistics.warm_started, replan.message)
+        rungs = replan.solution.refinements
+        self.assertEqual((rungs[0].num_stages, rungs[0].num_elements), needed)
+        self.assertLessEqual(replan.solution.verification_error, 1e-2)
+
     def test_an_accuracy_target_is_met_by_refining_and_every_rung_is_reported(self):
         answer = self.solve(PlanRequest(target_accuracy=1e-3))
         self.assertEqual(answer.status, Solution.SUCCESS, answer.message)
@@ -168,6 +181,21 @@ class PlanAction(unittest.TestCase):
         self.assertEqual(rungs[-1].verification_error, solution.verification_error)
         self.assertTrue(all(r.status == Solution.SUCCESS and r.wall_time > 0 for r in rungs))
         self.assertLessEqual(sum(r.wall_time for r in rungs), solution.statistics.wall_time)
+
+    def test_every_answer_is_verified_to_the_nodes_accuracy_unless_the_request_opts_out(self):
+        answer = self.solve(PlanRequest())
+        self.assertEqual(answer.status, Solution.SUCCESS, answer.message)
+        solution = answer.solution
+        self.assertTrue(solution.verified)
+        self.assertLessEqual(solution.verification_error, 1e-2)  # ~target_accuracy
+        self.assertEqual([(r.num_stages, r.num_elements) for r in solution.refinements], [(2, 3)])
+        self.assertIn("accuracy target 0.01 met on rung 1", answer.message)
+        unverified = self.solve(PlanRequest(target_accuracy=-1.0))
+        self.assertEqual(unverified.status, Solution.SUCCESS, unverified.message)
+        self.assertFalse(unverified.solution.verified)
+        self.assertEqual(len(unverified.solution.refinements), 0)
+        self.assertEqual(unverified.solution.statistics.objective, solution.statistics.objective)
+        self.assertLess(unverified.solution.statistics.wall_time, solution.statistics.wall_time)
 
     def test_an_accuracy_target_out_of_a_tiny_budget_is_not_a_success(self):
         request = PlanRequest(target_accuracy=1e-3)

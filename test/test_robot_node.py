@@ -74,6 +74,8 @@ class RobotNodeTest(unittest.TestCase):
         self.assertLess(math.hypot(disc.positions[-1].x - 0.6, disc.positions[-1].y - 0.2), 1e-3)
         self.assertLess(disc.target_distance, 1e-3)
         self.assertLess(solution.verification_error, 1e-3)
+        self.assertEqual([(r.num_stages, r.num_elements) for r in solution.refinements],
+                         [(2, ELEMENTS)])  # the node's ~target_accuracy 1e-2, met at once
         # A point per element boundary, at the solution's times, from the requested start.
         motion = solution.joint_trajectory
         self.assertEqual(list(motion.joint_names), JOINTS)
@@ -125,6 +127,24 @@ class RobotNodeTest(unittest.TestCase):
         for q in shoulders:
             self.assertTrue(low - 1e-9 <= q <= high + 1e-9, (q, low, high))
         self.assertGreater(max(shoulders) - min(shoulders), 1e-3)  # it moves
+
+    def test_an_accuracy_target_refines_the_arms_plan(self):
+        request = arm_push_request()
+        request.target_accuracy = 1e-6
+        response = self.solve(request)
+        rungs = response.solution.refinements
+        print("planar arm push to 1e-6: status %d, rungs %s" % (
+            response.status, [(r.num_stages, r.num_elements, r.verification_error, r.wall_time)
+                              for r in rungs]))
+        self.assertIn(response.status, [Solution.SUCCESS, Solution.ACCURACY_NOT_MET],
+                      response.message)
+        self.assertGreaterEqual(len(rungs), 2)
+        self.assertEqual((rungs[0].num_stages, rungs[0].num_elements), (2, ELEMENTS))
+        self.assertEqual((rungs[1].num_stages, rungs[1].num_elements), (3, ELEMENTS))
+        best = min(r.verification_error for r in rungs)
+        self.assertEqual(response.solution.verification_error, best)
+        self.assertEqual(response.status == Solution.SUCCESS, best <= 1e-6)
+        self.assertIn("accuracy target 1e-06", response.message)
 
     def test_joint_settings_are_checked(self):
         request = arm_push_request()

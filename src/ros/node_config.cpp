@@ -75,6 +75,10 @@ NodeConfig loadNodeConfig(const ros::NodeHandle& node) {
   node.param("wall_time_budget", c.wall_time_budget, c.wall_time_budget);
   node.param("verification/num_stages", c.verification_stages, c.verification_stages);
   node.param("verification/num_elements", c.verification_elements, c.verification_elements);
+  node.param("target_accuracy", c.target_accuracy, c.target_accuracy);
+  if (!(c.target_accuracy >= 0.0) || !std::isfinite(c.target_accuracy)) {
+    throw std::runtime_error("parameter target_accuracy must be finite and >= 0 (0: off)");
+  }
   node.param("playback_rate", c.playback_rate, c.playback_rate);
   std::string pairs = "lazy";
   node.param("contact_pairs", pairs, pairs);

@@ -32,6 +32,8 @@ struct NodeConfig {
   double wall_time_budget = 120.0;
   int verification_stages = 3;
   int verification_elements = 6;
+  /// ~target_accuracy: a request's accuracy ladder when it names none (0: unverified answers)
+  double target_accuracy = 1e-2;
   double playback_rate = 1.0;   ///< ~playback at this many times real time; 0: off
   bool lazy_pairs = true;       ///< ~contact_pairs: lazy (default) or all_in_reach
   double contact_margin = 0.1;  ///< ~contact_margin: lazy pairs' margin, relative to the radii

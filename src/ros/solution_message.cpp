@@ -99,6 +99,21 @@ uint8_t statusCode(fesd::SolveStatus status) {
   return Codes::SOLVER_ERROR;
 }
 
+void fillAccuracy(bool verified, double verification_error,
+                  const std::vector<fesd::AccuracyRung>& rungs, fesd_trajopt::Solution& solution) {
+  solution.verified = verified;
+  if (verified) solution.verification_error = verification_error;
+  for (const fesd::AccuracyRung& rung : rungs) {
+    fesd_trajopt::Refinement refinement;
+    refinement.num_stages = rung.stages;
+    refinement.num_elements = rung.elements;
+    refinement.verification_error = rung.verification_error;
+    refinement.wall_time = rung.wall_seconds;
+    refinement.status = statusCode(rung.status);
+    solution.refinements.push_back(refinement);
+  }
+}
+
 void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& report,
                 fesd_trajopt::Solution& solution) {
   solution.status = statusCode(report.status);

@@ -46,6 +46,10 @@ fesd_trajopt::BodyTrajectory bodyTrajectory(const fesd::SceneBody& body, double 
 void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& report,
                 fesd_trajopt::Solution& solution);
 
+/// The verification and the accuracy ladder's rungs of a plan.
+void fillAccuracy(bool verified, double verification_error,
+                  const std::vector<fesd::AccuracyRung>& rungs, fesd_trajopt::Solution& solution);
+
 /// rviz colour of a body: actuated blue, passive orange.
 std_msgs::ColorRGBA bodyColor(bool actuated, double alpha);
 

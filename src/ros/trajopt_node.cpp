@@ -41,6 +41,13 @@ Discretization discretization(const Request& request, const NodeConfig& config) 
   return d;
 }
 
+/// The accuracy a plan request asks for: its own (> 0), the configured default (0), or none
+/// (< 0, or a default of 0): then 0.
+double targetAccuracy(const fesd_trajopt::PlanRequest& request, const NodeConfig& config) {
+  if (request.target_accuracy < 0.0) return 0.0;
+  return request.target_accuracy > 0.0 ? request.target_accuracy : config.target_accuracy;
+}
+
 /// The wall-time budget of a request: its own where given, else the configuration's.
 template <class Request>
 double wallTimeBudget(const Request& request, const NodeConfig& config) {
@@ -63,9 +70,7 @@ std::string solveOptions(const fesd_trajopt::PlanRequest& request, const NodeCon
     return "the complementarity tolerance must be > 0 and finite";
   }
   if (!(budget > 0.0)) return "the wall-time budget must be > 0";
-  if (!(request.target_accuracy >= 0.0) || !std::isfinite(request.target_accuracy)) {
-    return "the target accuracy must be >= 0 (0: off) and finite";
-  }
+  if (!std::isfinite(request.target_accuracy)) return "the target accuracy must be finite";
   if (request.contact_pairs > fesd_trajopt::PlanRequest::PAIRS_ALL_IN_REACH) {
     return "unknown contact_pairs " + std::to_string(request.contact_pairs);
   }
@@ -213,10 +218,10 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
     previous = last_solution_;
   }
   options.previous = previous.get();
+  const double accuracy = targetAccuracy(request, config_);
   const fesd::SceneOutcome outcome =
-      request.target_accuracy > 0.0
-          ? fesd::solveToAccuracy(task, config_.limits, options, request.target_accuracy)
-          : fesd::solveSceneTask(task, config_.limits, options);
+      accuracy > 0.0 ? fesd::solveToAccuracy(task, config_.limits, options, accuracy)
+                     : fesd::solveSceneTask(task, config_.limits, options);
   if (!outcome.invalid.empty()) return refuse(answer, outcome.invalid);
   if (!outcome.infeasible.empty()) return answerInfeasible(answer, outcome.infeasible);
   ROS_INFO_STREAM("fesd_trajopt: solved "
@@ -237,17 +242,7 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
   solution.statistics.nlp_variables = outcome.sizes.variables;
   solution.statistics.nlp_constraints = outcome.sizes.constraints;
   solution.statistics.complementarity_constraints = outcome.sizes.complementarities;
-  solution.verified = outcome.verified;
-  if (outcome.verified) solution.verification_error = outcome.verification_error;
-  for (const fesd::AccuracyRung& rung : outcome.refinements) {
-    fesd_trajopt::Refinement refinement;
-    refinement.num_stages = rung.stages;
-    refinement.num_elements = rung.elements;
-    refinement.verification_error = rung.verification_error;
-    refinement.wall_time = rung.wall_seconds;
-    refinement.status = statusCode(rung.status);
-    solution.refinements.push_back(refinement);
-  }
+  fillAccuracy(outcome.verified, outcome.verification_error, outcome.refinements, solution);
   solution.header.stamp = ros::Time::now();
   solution.header.frame_id = config_.frame_id;
   solution.statistics.wall_time = stopwatch.wallSeconds();
@@ -395,9 +390,6 @@ void TrajoptNode::handleRobotPlan(const fesd_trajopt::PlanRequest& request,
   fesd::RobotSolveOptions options;
   const std::string problem = solveOptions(request, config_, options.ocp);
   if (!problem.empty()) return refuse(answer, problem);
-  if (request.target_accuracy > 0.0) {
-    return refuse(answer, "target_accuracy is not supported for robot scenes yet");
-  }
   // All pairs in reach unless lazy ones are asked for: the core's default for robots (lazy
   // pairs found another local optimum on the arm push, see RobotSolveOptions).
   options.lazy_pairs = request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_LAZY;
@@ -406,7 +398,10 @@ void TrajoptNode::handleRobotPlan(const fesd_trajopt::PlanRequest& request,
   options.verification.num_stages = config_.verification_stages;
   options.verification.num_elements = config_.verification_elements;
   if (request.warm_start) build.notes.push_back("cold start: robot scenes are solved cold");
-  const fesd::RobotOutcome outcome = fesd::solveRobotTask(task, config_.limits, options);
+  const double accuracy = targetAccuracy(request, config_);
+  const fesd::RobotOutcome outcome =
+      accuracy > 0.0 ? fesd::solveRobotToAccuracy(task, config_.limits, options, accuracy)
+                     : fesd::solveRobotTask(task, config_.limits, options);
   if (!outcome.invalid.empty()) return refuse(answer, outcome.invalid);
   int modelled = 0;
   for (const fesd::RobotPairDecision& decision : outcome.decisions) modelled += decision.modelled;
@@ -421,8 +416,8 @@ void TrajoptNode::handleRobotPlan(const fesd_trajopt::PlanRequest& request,
   solution.message = outcome.message;
   solution.statistics.start = "robot guess";
   solution.statistics.pair_rounds = outcome.pair_rounds;
-  solution.verified = request.verify && !std::isnan(outcome.verification_error);
-  if (solution.verified) solution.verification_error = outcome.verification_error;
+  fillAccuracy(!std::isnan(outcome.verification_error), outcome.verification_error,
+               outcome.refinements, solution);
   solution.header.stamp = ros::Time::now();
   solution.header.frame_id = config_.frame_id;
   solution.statistics.wall_time = stopwatch.wallSeconds();

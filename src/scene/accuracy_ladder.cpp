@@ -1,81 +1,93 @@
-// solveToAccuracy: what accuracy costs in time, answered per request.
+// The accuracy ladder: what accuracy costs in time, answered per request.
+#include "fesd_trajopt/scene/accuracy_ladder.h"
+
 #include <algorithm>
-#include <limits>
+#include <cmath>
 #include <sstream>
-#include <utility>
-#include <vector>
 
 #include "fesd_trajopt/scene/scene_solver.h"
-#include "fesd_trajopt/solver/stopwatch.h"
 
 namespace fesd {
-namespace {
 
-/// (stages, elements) of each rung: more stages first (the order grows with n_s: 2 n_s - 1 for
-/// Radau-IIA, at the same NLP structure per element), then more elements.
-std::vector<std::pair<int, int>> ladder(int stages, int elements, const TaskLimits& limits) {
+std::vector<std::pair<int, int>> accuracyRungs(int stages, int elements, const TaskLimits& limits) {
   std::vector<std::pair<int, int>> rungs{{stages, elements}};
   while (stages < limits.max_stages) rungs.emplace_back(++stages, elements);
   while (elements < limits.max_elements) rungs.emplace_back(stages, ++elements);
   return rungs;
 }
 
-}  // namespace
+bool solvedItsNlp(SolveStatus status) {
+  return status == SolveStatus::kSuccess || status == SolveStatus::kTargetNotReached;
+}
+
+double AccuracyLadder::remainingBudget() const {
+  return std::max(0.0, budget_ - stopwatch_.wallSeconds());
+}
+
+bool AccuracyLadder::record(const AccuracyRung& rung) {
+  rungs_.push_back(rung);
+  // A plan that misses an unreachable target is still a plan whose accuracy counts.
+  const bool solved = solvedItsNlp(rung.status);
+  const double error = std::isnan(rung.verification_error) ? std::numeric_limits<double>::infinity()
+                                                           : rung.verification_error;
+  met_ = solved && error <= target_;
+  cancelled_ = rung.status == SolveStatus::kCancelled;
+  out_of_time_ = rung.status == SolveStatus::kTimeout || remainingBudget() <= 0.0;
+  const bool best =
+      rungs_.size() == 1 || (solved && (!solvedItsNlp(best_status_) || error < best_error_));
+  if (best) {
+    best_error_ = error;
+    best_status_ = rung.status;
+  }
+  return best;
+}
+
+SolveStatus AccuracyLadder::finalStatus(SolveStatus best) const {
+  if (cancelled_) return SolveStatus::kCancelled;
+  // A solution that is not accurate enough says why it is no SUCCESS; a failure keeps its own.
+  if (!met_ && solvedItsNlp(best)) {
+    return out_of_time_ ? SolveStatus::kTimeout : SolveStatus::kAccuracyNotMet;
+  }
+  return best;
+}
+
+std::string AccuracyLadder::summary() const {
+  std::ostringstream message;
+  message << "accuracy target " << target_;
+  if (met_) {
+    message << " met on rung " << rungs_.size() << " (n_s = " << rungs_.back().stages
+            << ", N_FE = " << rungs_.back().elements << "): verification error " << best_error_;
+  } else if (cancelled_) {
+    message << " not met: cancelled on rung " << rungs_.size();
+  } else {
+    message << " not met: best verification error " << best_error_ << " (of " << rungs_.size()
+            << " rung(s), " << (out_of_time_ ? "the wall-time budget spent" : "the ladder ended")
+            << ")";
+  }
+  return message.str();
+}
 
 SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
                              SceneSolveOptions options, double target_accuracy) {
-  Stopwatch stopwatch;
-  const double budget = options.ocp.homotopy.wall_time_budget;
   options.verify = true;
-  std::vector<AccuracyRung> rungs;
-  SceneOutcome best;
-  bool met = false, out_of_time = false, cancelled = false;
-  for (const auto& [stages, elements] : ladder(options.ocp.discretization.num_stages,
-                                               options.ocp.discretization.num_elements, limits)) {
-    Stopwatch rung_time;
-    options.ocp.discretization.num_stages = stages;
-    options.ocp.discretization.num_elements = elements;
-    options.ocp.homotopy.wall_time_budget = std::max(0.0, budget - stopwatch.wallSeconds());
-    SceneOutcome outcome = solveSceneTask(task, limits, options);
-    if (!outcome.solved()) return outcome;  // refused or infeasible: no rung can change that
-    if (!outcome.verified) outcome.verification_error = std::numeric_limits<double>::infinity();
-    rungs.push_back(
-        {stages, elements, outcome.verification_error, rung_time.wallSeconds(), outcome.status});
-    // A plan that misses an unreachable target is still a plan whose accuracy counts.
-    const bool success = solvedItsNlp(outcome.status);
-    met = success && outcome.verification_error <= target_accuracy;
-    cancelled = outcome.status == SolveStatus::kCancelled;
-    out_of_time = outcome.status == SolveStatus::kTimeout || stopwatch.wallSeconds() >= budget;
-    // Keep the most accurate successful rung (a failed verification's error is infinite).
-    if (rungs.size() == 1 || (success && (!solvedItsNlp(best.status) ||
-                                          outcome.verification_error < best.verification_error))) {
-      best = std::move(outcome);
-    }
-    if (met || cancelled || out_of_time) break;
+  // Replanning starts on the rung the last plan needed: its warm start fits only there.
+  const SceneOutcome* previous = options.previous;
+  DiscretizationOptions& grid = options.ocp.discretization;
+  if (previous && solvedItsNlp(previous->status) && previous->verified &&
+      previous->structure.stages >= grid.num_stages &&
+      previous->structure.elements >= grid.num_elements &&
+      previous->structure.switch_detection == grid.switch_detection) {
+    grid.num_stages = previous->structure.stages;
+    grid.num_elements = previous->structure.elements;
   }
-  best.refinements = rungs;
-  std::ostringstream message;
-  message << "accuracy target " << target_accuracy;
-  if (met) {
-    message << " met on rung " << rungs.size() << " (n_s = " << rungs.back().stages
-            << ", N_FE = " << rungs.back().elements << "): verification error "
-            << best.verification_error;
-  } else if (cancelled) {
-    message << " not met: cancelled on rung " << rungs.size();
-  } else {
-    message << " not met: best verification error " << best.verification_error << " (of "
-            << rungs.size() << " rung(s), "
-            << (out_of_time ? "the wall-time budget spent" : "the ladder ended") << ")";
-  }
-  best.message = message.str() + "; " + best.message;
-  // A successful rung that is not accurate enough says why it is no SUCCESS; a failed one keeps
-  // its own status.
-  if (cancelled) {
-    best.status = SolveStatus::kCancelled;
-  } else if (!met && solvedItsNlp(best.status)) {
-    best.status = out_of_time ? SolveStatus::kTimeout : SolveStatus::kAccuracyNotMet;
-  }
-  return best;
+  return climbAccuracyLadder<SceneOutcome>(
+      options, limits, target_accuracy,
+      [&](const SceneSolveOptions& rung) {
+        SceneOutcome outcome = solveSceneTask(task, limits, rung);
+        if (!outcome.verified) outcome.verification_error = std::numeric_limits<double>::infinity();
+        return outcome;
+      },
+      [](const SceneOutcome& outcome) { return !outcome.solved(); });
 }
 
 }  // namespace fesd

@@ -61,6 +61,8 @@ double smallestBoundaryGap(const RobotScene& scene, const std::vector<RobotPair>
 RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
                             const RobotSolveOptions& options) {
   RobotOutcome outcome;
+  outcome.stages = options.ocp.discretization.num_stages;
+  outcome.elements = options.ocp.discretization.num_elements;
   outcome.invalid = validateRobotTask(task, limits);
   if (!outcome.invalid.empty()) return outcome;
   outcome.decisions = decideRobotPairs(task);
@@ -144,6 +146,15 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
     }
   }
   return outcome;
+}
+
+RobotOutcome solveRobotToAccuracy(const RobotTask& task, const TaskLimits& limits,
+                                  RobotSolveOptions options, double target_accuracy) {
+  options.verify = true;
+  return climbAccuracyLadder<RobotOutcome>(
+      options, limits, target_accuracy,
+      [&](const RobotSolveOptions& rung) { return solveRobotTask(task, limits, rung); },
+      [](const RobotOutcome& outcome) { return !outcome.invalid.empty(); });
 }
 
 }  // namespace fesd

@@ -220,10 +220,6 @@ double tightestRelaxation(const MpccReport& report, double fallback) {
 
 }  // namespace
 
-bool solvedItsNlp(SolveStatus status) {
-  return status == SolveStatus::kSuccess || status == SolveStatus::kTargetNotReached;
-}
-
 std::string warmStartRefusal(const SceneOutcome& previous, const SceneOutcome& now) {
   // Only a success is a solution of its NLP: an interrupted solve may hold another stage's point.
   if (!previous.solved() || !solvedItsNlp(previous.status) ||

@@ -6,6 +6,7 @@
 
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
+#include "fesd_trajopt/scene/accuracy_ladder.h"
 #include "fesd_trajopt/scene/robot_task.h"
 
 namespace fesd {
@@ -47,6 +48,8 @@ struct RobotOutcome {
   std::vector<double> target_distances;
   /// Per joint: |q_j(T) - target| (NaN without a target).
   std::vector<double> joint_target_distances;
+  int stages = 0, elements = 0;           ///< the solve's discretisation
+  std::vector<AccuracyRung> refinements;  ///< solveRobotToAccuracy's rungs, in order
 };
 
 /// validateRobotTask, decideRobotPairs, planRobotGuess, rounds of OcpSolver solves over the
@@ -55,6 +58,10 @@ struct RobotOutcome {
 /// more than targetTolerance is kTargetNotReached) and, on request, the verification.
 RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
                             const RobotSolveOptions& options);
+
+/// The accuracy ladder (climbAccuracyLadder) of a robot task, as solveToAccuracy for discs.
+RobotOutcome solveRobotToAccuracy(const RobotTask& task, const TaskLimits& limits,
+                                  RobotSolveOptions options, double target_accuracy);
 
 /// The smallest gap of `pairs` over the states at the trajectory's element boundaries.
 double smallestBoundaryGap(const RobotScene& scene, const std::vector<RobotPair>& pairs,

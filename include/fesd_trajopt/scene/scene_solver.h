@@ -9,6 +9,7 @@
 
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
+#include "fesd_trajopt/scene/accuracy_ladder.h"
 #include "fesd_trajopt/scene/scene_task.h"
 
 namespace fesd {
@@ -31,14 +32,6 @@ struct PlanStructure {
 /// Why a solution of structure `previous` cannot warm-start a task of structure `now`; "" when
 /// it can.
 std::string warmStartMismatch(const PlanStructure& previous, const PlanStructure& now);
-
-/// One rung of an accuracy ladder (solveToAccuracy).
-struct AccuracyRung {
-  int stages = 0, elements = 0;
-  double verification_error = std::numeric_limits<double>::infinity();
-  double wall_seconds = 0.0;
-  SolveStatus status = SolveStatus::kSolverError;
-};
 
 /// A scene task solved or simulated, in the full scene's terms. A task that is refused
 /// (`invalid`) or cannot be met (`infeasible`) is never solved: status and trajectory stay
@@ -77,10 +70,6 @@ struct SceneOutcome {
                                           [](const PairDecision& d) { return d.checked; }));
   }
 };
-
-/// Whether an outcome of this status is a solution of its NLP: a success, or one whose only
-/// shortfall is a target it did not reach.
-bool solvedItsNlp(SolveStatus status);
 
 /// Why `previous` cannot warm-start `now` (a task whose NLP is built: structure and sizes set):
 /// not a successful solve, warmStartMismatch, or other NLP sizes; "" when it can.
@@ -136,12 +125,11 @@ struct Verification {
 Verification verifyOutcome(const SceneTask& task, const SceneOutcome& outcome,
                            const SimulationOptions& fine, double margin);
 
-/// The accuracy ladder: the task solved and verified on options' discretisation, then with one
-/// more stage at a time up to limits.max_stages, then one more element per interval at a time up
-/// to limits.max_elements, until a rung's verification_error <= target_accuracy (kSuccess) or the
-/// wall-time budget is spent (kTimeout) or the ladder ends (kAccuracyNotMet). Returns the rung
-/// that met the target, else the most accurate successful one (or a failed first rung), with
-/// every rung in `refinements`.
+/// The accuracy ladder (climbAccuracyLadder) of a scene task: solved and verified on options'
+/// discretisation, then on finer ones until the verification error is at most target_accuracy.
+/// Returns the rung that met it, else the most accurate solution (or a failed first rung), with
+/// every rung in `refinements`. A warm start (options.previous, a verified solution on a finer
+/// rung of this ladder) starts the ladder on that rung.
 SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
                              SceneSolveOptions options, double target_accuracy);
 
