@@ -1,14 +1,18 @@
 #!/usr/bin/python3
 """Integration tests of the fesd_trajopt node on a robot scene: the shipped planar arm
 (config/robots/planar_arm.urdf, joints shoulder, elbow, wrist about z) pushing a disc, joint
-settings refused by name, a joint velocity command simulated, ~joint_states during playback."""
+settings refused by name, a joint velocity command simulated, ~joint_states during playback, a
+robot goal of the ~plan action with feedback and cancel."""
 import math
 import time
 import unittest
 
+import actionlib
 import rospy
 import rostest
-from fesd_trajopt.msg import BodySpec, JointSpec, PlanRequest, Solution
+from actionlib_msgs.msg import GoalStatus
+from fesd_trajopt.msg import (BodySpec, JointSpec, PlanRequest, PlanTrajectoryAction,
+                              PlanTrajectoryGoal, Solution)
 from fesd_trajopt.srv import Simulate, SimulateRequest, SolveTrajectory
 from geometry_msgs.msg import Point
 from sensor_msgs.msg import JointState
@@ -17,6 +21,7 @@ from visualization_msgs.msg import MarkerArray
 
 SOLVE = "/fesd_trajopt/solve_trajectory"
 SIMULATE = "/fesd_trajopt/simulate"
+PLAN = "/fesd_trajopt/plan"
 ARM = "/planar_arm"
 JOINTS = ["shoulder", "elbow", "wrist"]
 SPEED_LIMITS = [1.0, 1.5, 2.0]  # the URDF's <limit velocity>
@@ -145,6 +150,29 @@ class RobotNodeTest(unittest.TestCase):
         self.assertEqual(response.solution.verification_error, best)
         self.assertEqual(response.status == Solution.SUCCESS, best <= 1e-6)
         self.assertIn("accuracy target 1e-06", response.message)
+
+    def test_a_robot_goal_reports_every_relaxed_nlp_and_stops_when_cancelled(self):
+        client = actionlib.SimpleActionClient(PLAN, PlanTrajectoryAction)
+        self.assertTrue(client.wait_for_server(rospy.Duration(60.0)), "no ~plan action server")
+        request = arm_push_request()
+        request.target_accuracy = 1e-14  # no rung reaches it: the ladder runs for seconds
+        feedback = []
+        client.send_goal(PlanTrajectoryGoal(request=request), feedback_cb=feedback.append)
+        deadline = time.time() + 60.0
+        while not feedback and time.time() < deadline:
+            time.sleep(0.01)
+        self.assertTrue(feedback, "no feedback")
+        self.assertEqual(feedback[0].homotopy_step, 1)
+        cancelled_at = time.time()
+        client.cancel_goal()
+        self.assertTrue(client.wait_for_result(rospy.Duration(10.0)))
+        self.assertLess(time.time() - cancelled_at, 2.0)
+        self.assertEqual(client.get_state(), GoalStatus.PREEMPTED)
+        result = client.get_result()
+        self.assertEqual(result.status, Solution.CANCELLED, result.message)
+        points = result.solution.joint_trajectory.points
+        self.assertTrue(points)
+        self.assertTrue(all(math.isfinite(q) for p in points for q in p.positions))
 
     def test_joint_settings_are_checked(self):
         request = arm_push_request()

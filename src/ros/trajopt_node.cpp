@@ -191,7 +191,7 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
   fesd::Stopwatch stopwatch;
   std::string xml;
   if (urdfSource(config_, sceneFields(request), private_node_, xml).empty() && isRobotUrdf(xml)) {
-    return handleRobotPlan(request, xml, answer);
+    return handleRobotPlan(request, xml, monitor, answer);
   }
   if (!request.joints.empty()) {
     return refuse(answer, "joints are given, but the scene's URDF has no moving joints");
@@ -377,7 +377,7 @@ void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
 }
 
 void TrajoptNode::handleRobotPlan(const fesd_trajopt::PlanRequest& request,
-                                  const std::string& urdf_xml,
+                                  const std::string& urdf_xml, const fesd::SolveMonitor* monitor,
                                   fesd_trajopt::PlanTrajectoryResult& answer) {
   fesd::Stopwatch stopwatch;
   RobotTaskBuild build = buildRobotTask(
@@ -397,6 +397,7 @@ void TrajoptNode::handleRobotPlan(const fesd_trajopt::PlanRequest& request,
   options.verify = request.verify;
   options.verification.num_stages = config_.verification_stages;
   options.verification.num_elements = config_.verification_elements;
+  options.monitor = monitor;
   if (request.warm_start) build.notes.push_back("cold start: robot scenes are solved cold");
   const double accuracy = targetAccuracy(request, config_);
   const fesd::RobotOutcome outcome =

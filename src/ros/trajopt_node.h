@@ -43,6 +43,7 @@ class TrajoptNode {
                   fesd_trajopt::PlanTrajectoryResult& answer);
   /// A plan request whose URDF is a robot (isRobotUrdf).
   void handleRobotPlan(const fesd_trajopt::PlanRequest& request, const std::string& urdf_xml,
+                       const fesd::SolveMonitor* monitor,
                        fesd_trajopt::PlanTrajectoryResult& answer);
   void publish(const fesd::SceneTask& task, const fesd_trajopt::Solution& solution);
   void publishRobot(const fesd::RobotTask& task, const fesd_trajopt::Solution& solution);

@@ -98,6 +98,7 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
     ocp_options.homotopy.wall_time_budget =
         std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
     OcpSolver solver(ocp, ocp_options);
+    solver.setMonitor(options.monitor);
     // The guess's multipliers belong to the candidates; the NLP's to the modelled pairs.
     TrajectoryGuess round_guess = planRobotGuess(task, outcome.modelled, elements).guess;
     OcpSolution solution =

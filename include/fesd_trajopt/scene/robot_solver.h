@@ -25,6 +25,7 @@ struct RobotSolveOptions {
   /// gap of every pair in reach.
   bool verify = true;
   DiscretizationOptions verification;
+  const SolveMonitor* monitor = nullptr;  ///< progress and cancel of the solve; not owned
 };
 
 /// A robot task planned: the pair decisions, the first guess's pushing sphere, the solution and
