@@ -11,7 +11,7 @@ import actionlib
 import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
-from fesd_trajopt.msg import (BodySpec, JointSpec, PlanRequest, PlanTrajectoryAction,
+from fesd_trajopt.msg import (BodySpec, ContactPair, JointSpec, PlanRequest, PlanTrajectoryAction,
                               PlanTrajectoryGoal, Solution)
 from fesd_trajopt.srv import Simulate, SimulateRequest, SolveTrajectory
 from geometry_msgs.msg import Point
@@ -173,6 +173,22 @@ class RobotNodeTest(unittest.TestCase):
         points = result.solution.joint_trajectory.points
         self.assertTrue(points)
         self.assertTrue(all(math.isfinite(q) for p in points for q in p.positions))
+
+    def test_allowed_pairs_may_name_links_and_keep_the_other_pairs_out(self):
+        request = arm_push_request()
+        request.allowed_pairs = [ContactPair(first="disc", second="hand")]
+        response = self.solve(request)
+        self.assertEqual(response.status, Solution.SUCCESS, response.message)
+        solution = response.solution
+        self.assertTrue(solution.modeled_pairs)
+        for pair in solution.modeled_pairs:
+            self.assertTrue(pair.first.startswith("hand/sphere_"), pair.first)
+            self.assertEqual(pair.second, "disc")
+        excluded = [p for p in solution.pruned_pairs if p.reason == "not among the allowed pairs"]
+        self.assertIn("forearm", {p.first.split("/")[0] for p in excluded})
+        self.assertLess(solution.bodies[0].target_distance, 1e-3)
+        request.allowed_pairs = [ContactPair(first="disc", second="no_such_link")]
+        self.assert_invalid(request, "allowed pair disc/no_such_link names no pair")
 
     def test_joint_settings_are_checked(self):
         request = arm_push_request()

@@ -52,6 +52,35 @@ std::string applyJointSpec(const fesd_trajopt::JointSpec& spec, fesd::JointTask&
   return "";
 }
 
+/// Whether a requested name names one side of a robot pair: that body, obstacle or wall, or the
+/// link of a robot sphere (standing for each of its spheres).
+bool namesSide(const std::string& requested, const std::string& side) {
+  return side == requested || side.rfind(requested + "/sphere_", 0) == 0;
+}
+
+/// The request's allowed_pairs as the task's; "" or why not.
+std::string allowPairs(const std::vector<fesd_trajopt::ContactPair>& allowed,
+                       fesd::RobotTask& task) {
+  const std::vector<fesd::RobotPair> all = task.scene.allPairs();
+  for (const fesd_trajopt::ContactPair& entry : allowed) {
+    bool found = false;
+    for (const fesd::RobotPair& pair : all) {
+      const auto [a, b] = task.scene.pairSides(pair);
+      if ((namesSide(entry.first, a) && namesSide(entry.second, b)) ||
+          (namesSide(entry.second, a) && namesSide(entry.first, b))) {
+        task.allowed_pairs.push_back(pair);
+        found = true;
+      }
+    }
+    if (!found) {
+      return "allowed pair " + entry.first + "/" + entry.second +
+             " names no pair of the scene (unknown name, two fixed items, or spheres that never "
+             "pair)";
+    }
+  }
+  return "";
+}
+
 }  // namespace
 
 bool isRobotUrdf(const std::string& urdf_xml) {
@@ -63,10 +92,6 @@ RobotTaskBuild buildRobotTask(const NodeConfig& config, const SceneFields& scene
                               const RobotFields& robot, const std::string& urdf_xml,
                               const ros::NodeHandle& node) {
   RobotTaskBuild build;
-  if (!scene.allowed_pairs.empty()) {
-    build.error = "allowed_pairs is not supported for robot scenes yet";
-    return build;
-  }
   const fesd::PlanarChoice choice = !scene.planar_override ? fesd::PlanarChoice::kInferred
                                     : scene.planar         ? fesd::PlanarChoice::kPlanar
                                                            : fesd::PlanarChoice::kSpatial;
@@ -119,6 +144,8 @@ RobotTaskBuild buildRobotTask(const NodeConfig& config, const SceneFields& scene
   fesd::RobotTask& task = build.task.emplace(std::move(robot_scene));
   task.joints = joint_tasks;
   task.bodies = objects.bodies;
+  build.error = allowPairs(scene.allowed_pairs, task);
+  if (!build.error.empty()) return build;
   // applySceneFields writes "no bounds" as +-infinity; a robot task wants none at all (finite
   // ones are refused by validateRobotTask, naming the body).
   constexpr double kInf = std::numeric_limits<double>::infinity();

@@ -13,26 +13,14 @@
 namespace fesd_ros {
 namespace {
 
-std::string otherName(const fesd::RobotScene& scene, const fesd::RobotPair& pair) {
-  switch (pair.kind) {
-    case fesd::RobotPair::Kind::kBody:
-      return scene.collisionBodies()[pair.other].name;
-    case fesd::RobotPair::Kind::kObstacle:
-      return scene.discs().obstacles()[pair.other].name;
-    case fesd::RobotPair::Kind::kWall:
-      return scene.discs().walls()[pair.other].name;
-  }
-  return "";
-}
-
 /// A pair's two names, a robot sphere first (`<link>/sphere_<k>`, then the body it touches).
 std::pair<std::string, std::string> pairNames(const fesd::RobotScene& scene,
                                               const fesd::RobotPair& pair) {
-  const fesd::CollisionBody& body = scene.collisionBodies()[pair.body];
+  const auto [body, other] = scene.pairSides(pair);
   const bool other_is_sphere =
       pair.kind == fesd::RobotPair::Kind::kBody && scene.collisionBodies()[pair.other].sphere >= 0;
-  if (body.sphere < 0 && other_is_sphere) return {otherName(scene, pair), body.name};
-  return {body.name, otherName(scene, pair)};
+  if (scene.collisionBodies()[pair.body].sphere < 0 && other_is_sphere) return {other, body};
+  return {body, other};
 }
 
 fesd_trajopt::ContactPair pairMessage(const fesd::RobotScene& scene,

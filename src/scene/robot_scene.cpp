@@ -74,16 +74,21 @@ std::vector<RobotPair> RobotScene::allPairs() const {
 }
 
 std::string RobotScene::pairName(const RobotPair& pair) const {
+  const auto [body, other] = pairSides(pair);
+  return body + "/" + other;
+}
+
+std::pair<std::string, std::string> RobotScene::pairSides(const RobotPair& pair) const {
   const std::string& body = collision_bodies_.at(pair.body).name;
   switch (pair.kind) {
     case RobotPair::Kind::kBody:
-      return body + "/" + collision_bodies_.at(pair.other).name;
+      return {body, collision_bodies_.at(pair.other).name};
     case RobotPair::Kind::kObstacle:
-      return body + "/" + discs_.obstacles().at(pair.other).name;
+      return {body, discs_.obstacles().at(pair.other).name};
     case RobotPair::Kind::kWall:
-      return body + "/" + discs_.walls().at(pair.other).name;
+      return {body, discs_.walls().at(pair.other).name};
   }
-  return body;
+  return {body, ""};
 }
 
 CentrePair RobotScene::centrePair(const RobotPair& pair) const {

@@ -128,6 +128,12 @@ std::string validateRobotTask(const RobotTask& task, const TaskLimits& limits) {
   return "";
 }
 
+bool isAllowed(const RobotTask& task, const RobotPair& pair) {
+  return task.allowed_pairs.empty() ||
+         std::find(task.allowed_pairs.begin(), task.allowed_pairs.end(), pair) !=
+             task.allowed_pairs.end();
+}
+
 std::vector<double> collisionReach(const RobotTask& task) {
   const RobotScene& scene = task.scene;
   const double travel = task.horizon * controlNorm(task);
@@ -146,7 +152,7 @@ std::vector<double> collisionReach(const RobotTask& task) {
   for (bool grew = true; grew;) {
     grew = false;
     for (const RobotPair& pair : scene.allPairs()) {
-      if (pair.kind != RobotPair::Kind::kBody) continue;
+      if (pair.kind != RobotPair::Kind::kBody || !isAllowed(task, pair)) continue;
       for (const auto& [mover, still] :
            {std::make_pair(pair.body, pair.other), std::make_pair(pair.other, pair.body)}) {
         if (reach[mover] == 0.0 || reach[still] > 0.0 || bodies[still].sphere >= 0) continue;
@@ -163,6 +169,10 @@ std::vector<RobotPairDecision> decideRobotPairs(const RobotTask& task) {
   const std::vector<double> reach = collisionReach(task);
   std::vector<RobotPairDecision> decisions;
   for (const RobotPair& pair : task.scene.allPairs()) {
+    if (!isAllowed(task, pair)) {
+      decisions.push_back({pair, false, "not among the allowed pairs"});
+      continue;
+    }
     const bool moves =
         reach[pair.body] > 0.0 || (pair.kind == RobotPair::Kind::kBody && reach[pair.other] > 0.0);
     if (!moves) {

@@ -84,6 +84,28 @@ TEST(RobotTask, PairsBeyondReachArePruned) {
   EXPECT_NEAR(reach[0], std::sqrt(1.0 + 2.25 + 4.0), 1e-12);
 }
 
+TEST(RobotTask, OnlyAllowedPairsAreModelledAndOnlyThroughThemDoesAPassiveBodyMove) {
+  RobotTask task = armTask();
+  const std::vector<fesd::RobotPair> all = task.scene.allPairs();
+  for (const fesd::RobotPair& pair : all) {
+    if (task.scene.pairName(pair) == "hand/sphere_1/near_post") task.allowed_pairs.push_back(pair);
+  }
+  ASSERT_EQ(task.allowed_pairs.size(), 1u);
+  EXPECT_EQ(task.scene.pairSides(task.allowed_pairs[0]),
+            std::make_pair(std::string("hand/sphere_1"), std::string("near_post")));
+  int modelled = 0;
+  for (const fesd::RobotPairDecision& d : fesd::decideRobotPairs(task)) {
+    modelled += d.modelled;
+    if (!fesd::isAllowed(task, d.pair)) {
+      EXPECT_FALSE(d.modelled);
+      EXPECT_EQ(d.reason, "not among the allowed pairs");
+    }
+  }
+  EXPECT_EQ(modelled, 1);
+  // No allowed pair touches the disc: nothing can push it, so it keeps no reach.
+  EXPECT_EQ(fesd::collisionReach(task)[0], 0.0);
+}
+
 TEST(RobotTask, OcpBoundsAndCosts) {
   RobotTask task = armTask();
   task.joints[2].target = 0.3;

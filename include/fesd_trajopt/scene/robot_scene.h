@@ -75,6 +75,8 @@ class RobotScene {
   /// on the same link never pair.
   std::vector<RobotPair> allPairs() const;
   std::string pairName(const RobotPair& pair) const;
+  /// The names of a pair's two sides: the collision body's, then the other's.
+  std::pair<std::string, std::string> pairSides(const RobotPair& pair) const;
   /// The constraint value of one pair at a state (> 0: apart).
   double constraintValue(const RobotPair& pair, const Eigen::VectorXd& x) const;
   /// The signed gap between the pair's surfaces at x (negative: overlap).

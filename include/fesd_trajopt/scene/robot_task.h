@@ -40,7 +40,12 @@ struct RobotTask {
   int num_intervals = 40;
   double control_weight = 1e-4;
   double default_joint_velocity = 1.0;  ///< for joints whose URDF gives no velocity limit
+  /// Pairs that may be modelled (RobotScene::allPairs' entries); empty means every pair.
+  std::vector<RobotPair> allowed_pairs;
 };
+
+/// Whether the task allows a pair to be modelled (its allowed_pairs is empty or holds it).
+bool isAllowed(const RobotTask& task, const RobotPair& pair);
 
 /// A joint's speed bound: the task's, else the URDF's, else the task's default.
 double jointSpeedLimit(const RobotTask& task, int joint);
@@ -66,10 +71,11 @@ struct RobotPairDecision {
 /// is no longer than the commanded one in x = (q, p), so |xdot| <= |u_max| (over every coordinate
 /// at its bound): a free actuated body or a pushed one moves at most T |u_max|, a robot sphere
 /// at most sphereReachBound with every joint at |u_max| (a push can speed one joint up, never
-/// the whole). A passive body gets its reach once it can touch something that moves.
+/// the whole). A passive body gets its reach once it can touch something that moves through an
+/// allowed pair.
 std::vector<double> collisionReach(const RobotTask& task);
 
-/// The pairs that can touch within the horizon (their start gap minus both reaches <= 0).
+/// The allowed pairs that can touch within the horizon (their start gap minus both reaches <= 0).
 std::vector<RobotPairDecision> decideRobotPairs(const RobotTask& task);
 
 /// The OCP of a robot task with the given modelled pairs: joint speeds and the actuated bodies'
