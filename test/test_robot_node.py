@@ -190,6 +190,21 @@ class RobotNodeTest(unittest.TestCase):
         request.allowed_pairs = [ContactPair(first="disc", second="no_such_link")]
         self.assert_invalid(request, "allowed pair disc/no_such_link names no pair")
 
+    def test_a_passive_joint_is_never_commanded_and_turns_only_when_pushed(self):
+        request = arm_push_request()
+        request.joints.append(JointSpec(name="wrist", role=BodySpec.ROLE_PASSIVE))
+        response = self.solve(request)
+        self.assertEqual(response.status, Solution.SUCCESS, response.message)
+        solution = response.solution
+        self.assertLess(solution.bodies[0].target_distance, 1e-3)
+        wrist = JOINTS.index("wrist")
+        self.assertTrue(all(p.velocities[wrist] == 0.0 for p in solution.joint_commands.points))
+        angles = [p.positions[wrist] for p in solution.joint_trajectory.points]
+        contact = min(s.time for s in solution.switches if s.kind == s.CONTACT)
+        before = [q for q, t in zip(angles, solution.times) if t <= contact + 1e-9]
+        self.assertLess(max(abs(q) for q in before), 1e-9)  # still until the hand meets the disc
+        self.assertGreater(max(abs(q) for q in angles), 1e-3)  # then the push turns it
+
     def test_joint_settings_are_checked(self):
         request = arm_push_request()
         request.joints.append(JointSpec(name="knee"))
@@ -201,8 +216,8 @@ class RobotNodeTest(unittest.TestCase):
         request.joints.append(JointSpec(name="elbow", has_bounds=True, lower=0.1, upper=1.0))
         self.assert_invalid(request, "joint 'elbow' starts at 0, outside its bounds")
         request = arm_push_request()
-        request.joints.append(JointSpec(name="wrist", role=BodySpec.ROLE_PASSIVE))
-        self.assert_invalid(request, "joint 'wrist'", "passive")
+        request.joints.append(JointSpec(name="wrist", role=BodySpec.ROLE_PASSIVE, max_velocity=1.0))
+        self.assert_invalid(request, "joint 'wrist' is passive: it takes no max_velocity")
         request = arm_push_request()
         request.bodies[0].add = False
         self.assert_invalid(request, "body 'disc'")

@@ -62,7 +62,10 @@ InverseKinematicsResult sphereInverseKinematics(const KinematicModel& model, int
   double damping = options.damping;
   while (result.distance > options.tolerance && result.iterations < options.max_iterations) {
     ++result.iterations;
-    const Eigen::Matrix3Xd jacobian = sphereJacobian(model, data, sphere);
+    Eigen::Matrix3Xd jacobian = sphereJacobian(model, data, sphere);
+    for (size_t j = 0; j < options.held.size(); ++j) {
+      if (options.held[j]) jacobian.col(j).setZero();  // its step is then exactly 0
+    }
     const Eigen::Vector3d error = target - data.sphere_centres[sphere];
     bool progressed = false;
     for (int increase = 0; increase <= kDampingIncreases && !progressed; ++increase) {

@@ -26,8 +26,9 @@ std::string jointNames(const fesd::KinematicModel& robot) {
 std::string applyJointSpec(const fesd_trajopt::JointSpec& spec, fesd::JointTask& joint,
                            double& start) {
   const std::string who = "joint '" + spec.name + "'";
-  if (spec.role == fesd_trajopt::BodySpec::ROLE_PASSIVE) {
-    return who + " is passive: passive joints are not supported yet (only actuated ones)";
+  joint.passive = spec.role == fesd_trajopt::BodySpec::ROLE_PASSIVE;
+  if (joint.passive && spec.max_velocity != 0.0) {
+    return who + " is passive: it takes no max_velocity (it moves only when pushed)";
   }
   if (spec.role > fesd_trajopt::BodySpec::ROLE_PASSIVE) {
     return who + " has an unknown role " + std::to_string(spec.role);

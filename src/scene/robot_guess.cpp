@@ -60,6 +60,8 @@ Eigen::VectorXd interpolate(const std::vector<Eigen::VectorXd>& values, double h
 }  // namespace
 
 int pushingSphere(const RobotTask& task, int pushed_body) {
+  const auto passive = [](const JointTask& joint) { return joint.passive; };
+  if (std::all_of(task.joints.begin(), task.joints.end(), passive)) return -1;
   const KinematicModel& robot = task.scene.robot();
   int tool_joint = -1;
   for (const KinematicSphere& s : robot.spheres)
@@ -101,7 +103,9 @@ RobotGuess planRobotGuess(const RobotTask& task, const std::vector<RobotPair>& p
     // Nothing to push: the joints move straight to their targets.
     Eigen::VectorXd end = scene.initialJoints();
     for (int j = 0; j < nq; ++j) {
-      if (task.joints[j].target_weight > 0.0) end(j) = task.joints[j].target;
+      if (task.joints[j].target_weight > 0.0 && !task.joints[j].passive) {
+        end(j) = task.joints[j].target;
+      }
     }
     for (int k = 0; k < boundaries; ++k) {
       const double fraction = static_cast<double>(k) / (boundaries - 1);
@@ -113,11 +117,13 @@ RobotGuess planRobotGuess(const RobotTask& task, const std::vector<RobotPair>& p
     const Eigen::Vector3d start = data.sphere_centres[result.pusher_sphere];
     const PushPlan plan = proxyPlan(task, result.pusher_sphere, result.pushed_body, start);
     Eigen::VectorXd q = scene.initialJoints();
+    InverseKinematicsOptions ik;
+    for (const JointTask& joint : task.joints) ik.held.push_back(joint.passive);
     for (int k = 0; k < boundaries; ++k) {
       const double t = horizon * k / (boundaries - 1);
       Eigen::Vector3d target = start;  // planar: keep the sphere's own z
       target.head(scene.dimension()) = plan.guess.state(t).head(scene.dimension());
-      if (k > 0) q = sphereInverseKinematics(scene.robot(), result.pusher_sphere, target, q).q;
+      if (k > 0) q = sphereInverseKinematics(scene.robot(), result.pusher_sphere, target, q, ik).q;
       result.boundary_joints.push_back(q);
     }
     const int body = result.pushed_body, dim = scene.dimension();

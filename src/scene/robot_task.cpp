@@ -48,6 +48,7 @@ double separationBound(const RobotTask& task, const RobotPair& pair,
 }  // namespace
 
 double jointSpeedLimit(const RobotTask& task, int joint) {
+  if (task.joints[joint].passive) return 0.0;
   if (task.joints[joint].max_velocity > 0.0) return task.joints[joint].max_velocity;
   const double urdf = task.scene.robot().joints[joint].max_velocity;
   return urdf > 0.0 ? urdf : task.default_joint_velocity;

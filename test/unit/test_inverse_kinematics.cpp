@@ -1,7 +1,7 @@
 // Damped least-squares inverse kinematics for one sphere centre
 // (kinematics/inverse_kinematics.cpp): reachable targets met to 1e-8 on the planar arm and the
 // Panda, unreachable ones end cleanly at the closest point (stretched out, or against a joint
-// limit), and the result is bitwise repeatable.
+// limit), held joints stay put, and the result is bitwise repeatable.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -47,6 +47,20 @@ TEST(InverseKinematics, ReachablePointsAreMetOnThePlanarArmAndThePanda) {
   EXPECT_TRUE(panda_result.reached);
   EXPECT_LT((centreAt(panda, finger, panda_result.q) - panda_target).norm(), 1e-8);
   EXPECT_TRUE(withinLimits(panda, panda_result.q));
+}
+
+TEST(InverseKinematics, HeldJointsStayWhereTheyStart) {
+  const fesd::KinematicModel arm = fesd_test::loadShippedRobot("planar_arm.urdf");
+  const int tip = arm.sphereIndex("hand/sphere_1");
+  // Reachable with the wrist held at 0.3: the target is where q = (0.7, -1.1, 0.3) puts the tip.
+  const Eigen::Vector3d target = centreAt(arm, tip, Eigen::Vector3d(0.7, -1.1, 0.3));
+  fesd::InverseKinematicsOptions options;
+  options.held = {false, false, true};
+  const fesd::InverseKinematicsResult result =
+      fesd::sphereInverseKinematics(arm, tip, target, Eigen::Vector3d(0.0, 0.0, 0.3), options);
+  EXPECT_TRUE(result.reached);
+  EXPECT_EQ(result.q(2), 0.3);
+  EXPECT_LT((centreAt(arm, tip, result.q) - target).norm(), 1e-8);
 }
 
 TEST(InverseKinematics, UnreachablePointsEndCleanlyAtTheClosestPointAndRepeatBitwise) {

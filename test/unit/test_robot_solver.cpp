@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "fesd_trajopt/scene/robot_scenes.h"
 #include "fesd_trajopt/scene/robot_solver.h"
 #include "support/robot_files.h"
 
@@ -38,6 +39,40 @@ TEST(RobotSolver, JointsReachTheirTargets) {
   EXPECT_TRUE(std::isnan(outcome.joint_target_distances[0]));
   EXPECT_GT(outcome.boundary_gap, 0.0);
   EXPECT_LT(outcome.verification_error, 1e-6);
+}
+
+TEST(RobotSolver, APassiveJointTurnsOnlyWhileItsLinkIsPushed) {
+  // The shipped arm push with the wrist passive: shoulder and elbow push the disc with the
+  // hand, whose reaction alone turns the wrist.
+  fesd::RobotTask task = fesd::planarArmPushTask(
+      std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf")));
+  task.joints[2].passive = true;
+  EXPECT_EQ(fesd::jointSpeedLimit(task, 2), 0.0);
+  fesd::RobotSolveOptions options;
+  options.ocp.discretization.num_elements = 2;
+  const fesd::RobotOutcome outcome = fesd::solveRobotTask(task, {}, options);
+  ASSERT_TRUE(fesd::solvedItsNlp(outcome.status)) << outcome.message;
+  const fesd::Trajectory& plan = outcome.trajectory;
+  for (const Eigen::VectorXd& u : plan.controls) EXPECT_EQ(u(2), 0.0);
+  int pushed_elements = 0;
+  double turned = 0.0;
+  for (size_t e = 0; e < plan.elements.size(); ++e) {
+    const double wrist_motion = std::abs(plan.states[e + 1](2) - plan.states[e](2));
+    turned += wrist_motion;
+    if (plan.elements[e].stage_multipliers.maxCoeff() <= 1e-9) {
+      EXPECT_LT(wrist_motion, 1e-9) << "element " << e;
+    } else {
+      ++pushed_elements;
+    }
+  }
+  EXPECT_GT(pushed_elements, 0);
+  EXPECT_GT(turned, 1e-3);  // the push turned the wrist
+  EXPECT_GT(outcome.boundary_gap, -1e-9);
+  std::printf(
+      "passive wrist: %s, turned %.4f rad over %d pushed elements, disc %.2e from its "
+      "target, verification %.2e\n",
+      fesd::statusName(outcome.status).c_str(), turned, pushed_elements,
+      outcome.target_distances[0], outcome.verification_error);
 }
 
 TEST(RobotSolver, SmallestBoundaryGap) {

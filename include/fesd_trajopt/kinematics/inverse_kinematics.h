@@ -1,5 +1,7 @@
 #pragma once
 
+#include <vector>
+
 #include <Eigen/Dense>
 
 #include "fesd_trajopt/kinematics/kinematic_model.h"
@@ -13,6 +15,8 @@ struct InverseKinematicsOptions {
   int max_iterations = 500;
   /// A stall: an iteration that shortens the distance by less than this fraction of it.
   double stall_fraction = 1e-9;
+  /// Coordinates held still (e.g. passive joints); empty: none.
+  std::vector<bool> held;
 };
 
 struct InverseKinematicsResult {

@@ -10,7 +10,8 @@ namespace fesd {
 /// The sphere that pushes a body, by a fixed rule: among the spheres of the end link (the link
 /// group moved by the highest-numbered joint that carries spheres: the tool), the one whose
 /// centre at q0 is nearest to the approach point, the point behind the body opposite its push
-/// direction at the sum of the radii. Ties go to the lower sphere index. -1 without spheres.
+/// direction at the sum of the radii. Ties go to the lower sphere index. -1 without spheres or
+/// without an actuated joint. The guess holds passive joints still (IK's held coordinates).
 int pushingSphere(const RobotTask& task, int pushed_body);
 
 /// A deterministic first guess for a robot task:

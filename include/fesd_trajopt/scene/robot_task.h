@@ -15,6 +15,9 @@ namespace fesd {
 
 /// What a joint of the robot should do (parallel to the robot's coordinates).
 struct JointTask {
+  /// Moves only when pushed, like a door's hinge: no command (its speed bound is 0), only the
+  /// contacts' projection turns it.
+  bool passive = false;
   double max_velocity = 0.0;  ///< |u_j| bound; 0: the URDF's, or RobotTask's default
   double target = 0.0;
   double target_weight = 0.0;  ///< weight of (q_j(T) - target)^2 in the cost
@@ -47,7 +50,8 @@ struct RobotTask {
 /// Whether the task allows a pair to be modelled (its allowed_pairs is empty or holds it).
 bool isAllowed(const RobotTask& task, const RobotPair& pair);
 
-/// A joint's speed bound: the task's, else the URDF's, else the task's default.
+/// A joint's speed bound: 0 for a passive joint, else the task's, else the URDF's, else the
+/// task's default.
 double jointSpeedLimit(const RobotTask& task, int joint);
 /// A joint's position bounds: the task's override, else the URDF's (+-infinity if none).
 std::pair<double, double> jointBounds(const RobotTask& task, int joint);
