@@ -12,8 +12,10 @@ namespace fesd_bench {
 namespace {
 
 /// `lanes` lanes 40 apart, each a pusher (R = 0.5, |u| <= 2) at (-3, y) and a puck at (0, y)
-/// to be pushed to (2, y) in T = 2: every lane is the same small problem, and no two lanes can
-/// touch while the reach bound (D = 2 sqrt(8 lanes)) stays below half their gap (8 lanes: 16).
+/// to be pushed to (0.5, y) in T = 2 (a pushed pair moves at half the commanded speed, as the
+/// projection shares it between them: after the approach the puck could make 1): every lane is
+/// the same small problem, and no two lanes can touch while the reach bound (D = 2 sqrt(8
+/// lanes)) stays below half their gap (8 lanes: 16).
 fesd::SceneTask lanesTask(int lanes, int intervals) {
   fesd::SceneTask task;
   task.horizon = 2.0;
@@ -25,7 +27,7 @@ fesd::SceneTask lanesTask(int lanes, int intervals) {
     task.scene.bodies().push_back({"puck_" + index, 0.5, Eigen::Vector2d(0.0, y), false});
     fesd::BodyTask pusher, puck;
     pusher.max_speed = 2.0;
-    puck.target = Eigen::Vector2d(2.0, y);
+    puck.target = Eigen::Vector2d(0.5, y);
     puck.target_weight = 100.0;
     task.bodies.push_back(pusher);
     task.bodies.push_back(puck);

@@ -85,6 +85,16 @@ PlanningScene described(const std::string& family, unsigned seed, SceneTask task
   return result;
 }
 
+/// Whether an obstacle at p of radius r would keep a body from its target (every body's, the
+/// actuators' home targets too): then the target would not be reachable by construction.
+bool onATarget(const SceneTask& task, const Eigen::VectorXd& p, double r) {
+  for (size_t b = 0; b < task.bodies.size(); ++b) {
+    const Eigen::VectorXd& target = task.bodies[b].target;
+    if (target.size() && (p - target).norm() < task.scene.bodies()[b].radius + r + 0.5) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 const std::vector<std::string>& families() {
@@ -143,7 +153,7 @@ PlanningScene clutteredScene(unsigned seed) {
     }
     if (!fits(scene, p, r, 0.1 * scale)) continue;
     if (obstacle && (segmentDistance(p, start, beyond) < corridor + r ||
-                     (p - target).norm() < 2.0 * (radius + r))) {
+                     (p - target).norm() < 2.0 * (radius + r) || onATarget(task, p, r))) {
       continue;
     }
     if (obstacle) {
