@@ -9,9 +9,8 @@
 
 #include "bench_args.h"
 #include "commands.h"
-#include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/examples/planning_scenes.h"
-#include "fesd_trajopt/solver/stopwatch.h"
+#include "showcase_reference.h"
 
 namespace fesd_bench {
 namespace {
@@ -55,16 +54,7 @@ int planningSweep(const Arguments& args) {
   args.rejectUnused();
   if (pairs != "lazy" && pairs != "all") throw std::invalid_argument("--pairs=lazy|all");
 
-  double showcase_seconds = 0.0;
-  if (with_showcase) {
-    fesd::Stopwatch stopwatch;
-    const fesd::SceneOutcome showcase =
-        fesd::solveSceneTask(fesd::manipulation_example::task(40), fesd::TaskLimits{}, options);
-    showcase_seconds = stopwatch.wallSeconds();
-    std::printf("# showcase: %s, %d Ipopt iterations, %.3f s\n",
-                fesd::statusName(showcase.status).c_str(), showcase.report.iterations,
-                showcase_seconds);
-  }
+  const double showcase_seconds = with_showcase ? timeShowcase(options, "# ") : 0.0;
   std::printf(
       "family,seed,bodies,obstacles,reachable,pairs,status,wall_s,ipopt_iterations,objective,"
       "homotopy_steps,step_iterations,pairs_in_reach,modelled,checked,rounds,target_distance,plan_"

@@ -14,12 +14,12 @@
 
 #include "bench_args.h"
 #include "commands.h"
-#include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
 #include "fesd_trajopt/scene/robot_scenes.h"
 #include "fesd_trajopt/scene/robot_solver.h"
 #include "fesd_trajopt/scene/scene_solver.h"
 #include "fesd_trajopt/solver/stopwatch.h"
+#include "showcase_reference.h"
 
 namespace fesd_bench {
 namespace {
@@ -58,22 +58,11 @@ int robotPush(const Arguments& args) {
   args.rejectUnused();
   if (pairs != "lazy" && pairs != "all") throw std::invalid_argument("--pairs=lazy|all");
 
-  double showcase_seconds = 0.0;
-  if (with_showcase) {
-    // Timed as planning-sweep times it: the node's scene solve with 3 elements and 2 stages.
-    fesd::SceneSolveOptions showcase_options;
-    showcase_options.ocp.discretization.num_elements = 3;
-    showcase_options.ocp.discretization.num_stages = 2;
-    fesd::Stopwatch stopwatch;
-    const fesd::SceneOutcome showcase = fesd::solveSceneTask(fesd::manipulation_example::task(40),
-                                                             fesd::TaskLimits{}, showcase_options);
-    showcase_seconds = stopwatch.wallSeconds();
-    std::printf("showcase: %s, %d Ipopt iterations (%.3f ms each), objective %.6g, %.3f s\n",
-                fesd::statusName(showcase.status).c_str(), showcase.report.iterations,
-                1e3 * (showcase.report.ipopt_seconds + showcase.report.evaluation_seconds) /
-                    std::max(1, showcase.report.iterations),
-                showcase.report.objective, showcase_seconds);
-  }
+  // Timed as planning-sweep times it: the node's scene solve with 3 elements and 2 stages.
+  fesd::SceneSolveOptions showcase_options;
+  showcase_options.ocp.discretization.num_elements = 3;
+  showcase_options.ocp.discretization.num_stages = 2;
+  const double showcase_seconds = with_showcase ? timeShowcase(showcase_options, "") : 0.0;
 
   fesd::Stopwatch stopwatch;
   const fesd::RobotOutcome outcome = fesd::solveRobotTask(task, fesd::TaskLimits{}, options);

@@ -127,14 +127,8 @@ fesd_trajopt::Solution robotSolution(const fesd::RobotTask& task,
         .push_back(pairMessage(scene, decision));
   }
   for (const fesd::SwitchEvent& event : trajectory.switches) {
-    const fesd::RobotPair& pair = outcome.modelled[event.constraint];
-    fesd_trajopt::SwitchEvent message;
-    message.time = event.time;
-    std::tie(message.first, message.second) = pairNames(scene, pair);
-    message.kind = event.kind == fesd::SwitchEvent::Kind::kContact
-                       ? fesd_trajopt::SwitchEvent::CONTACT
-                       : fesd_trajopt::SwitchEvent::RELEASE;
-    solution.switches.push_back(message);
+    const auto [first, second] = pairNames(scene, outcome.modelled[event.constraint]);
+    solution.switches.push_back(switchMessage(event, first, second));
   }
   return solution;
 }

@@ -99,6 +99,18 @@ uint8_t statusCode(fesd::SolveStatus status) {
   return Codes::SOLVER_ERROR;
 }
 
+fesd_trajopt::SwitchEvent switchMessage(const fesd::SwitchEvent& event, const std::string& first,
+                                        const std::string& second) {
+  fesd_trajopt::SwitchEvent message;
+  message.time = event.time;
+  message.first = first;
+  message.second = second;
+  message.kind = event.kind == fesd::SwitchEvent::Kind::kContact
+                     ? fesd_trajopt::SwitchEvent::CONTACT
+                     : fesd_trajopt::SwitchEvent::RELEASE;
+  return message;
+}
+
 void fillAccuracy(bool verified, double verification_error,
                   const std::vector<fesd::AccuracyRung>& rungs, fesd_trajopt::Solution& solution) {
   solution.verified = verified;
@@ -191,14 +203,9 @@ fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
     if (decision.modelled) modelled.push_back(decision.pair);
   }
   for (const fesd::SwitchEvent& event : trajectory.switches) {
-    fesd_trajopt::SwitchEvent message;
-    message.time = event.time;
-    message.first = scene.bodies()[modelled[event.constraint].body].name;
-    message.second = otherName(scene, modelled[event.constraint]);
-    message.kind = event.kind == fesd::SwitchEvent::Kind::kContact
-                       ? fesd_trajopt::SwitchEvent::CONTACT
-                       : fesd_trajopt::SwitchEvent::RELEASE;
-    solution.switches.push_back(message);
+    const fesd::ContactPair& pair = modelled[event.constraint];
+    solution.switches.push_back(
+        switchMessage(event, scene.bodies()[pair.body].name, otherName(scene, pair)));
   }
   return solution;
 }

@@ -46,6 +46,10 @@ fesd_trajopt::BodyTrajectory bodyTrajectory(const fesd::SceneBody& body, double 
 void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& report,
                 fesd_trajopt::Solution& solution);
 
+/// A switch event of the plan between two named sides (a pair's).
+fesd_trajopt::SwitchEvent switchMessage(const fesd::SwitchEvent& event, const std::string& first,
+                                        const std::string& second);
+
 /// The verification and the accuracy ladder's rungs of a plan.
 void fillAccuracy(bool verified, double verification_error,
                   const std::vector<fesd::AccuracyRung>& rungs, fesd_trajopt::Solution& solution);

@@ -61,8 +61,6 @@ double smallestBoundaryGap(const RobotScene& scene, const std::vector<RobotPair>
 RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
                             const RobotSolveOptions& options) {
   RobotOutcome outcome;
-  outcome.stages = options.ocp.discretization.num_stages;
-  outcome.elements = options.ocp.discretization.num_elements;
   outcome.invalid = validateRobotTask(task, limits);
   if (!outcome.invalid.empty()) return outcome;
   outcome.decisions = decideRobotPairs(task);

@@ -13,6 +13,7 @@
 #include "fesd_trajopt/ocp/ocp_solver.h"
 #include "fesd_trajopt/scene/scene_task.h"
 #include "support/corner_mpcc.h"
+#include "support/scene_tasks.h"
 
 namespace {
 
@@ -213,14 +214,10 @@ TEST(SolverRobustness, ASimulationBudgetEndsTheSimulationWithTimeoutAndKeepsTheS
 
 TEST(SolverRobustness, TwentyRepeatsOfOneOcpAreBitwiseIdentical) {
   // A pusher drives a puck to a target 2 m on: contact, pushing, 6 intervals of 2 elements.
-  fesd::SceneTask task;
-  task.scene.bodies() = {{"pusher", 0.5, Eigen::Vector2d(-2.0, 0.0), true},
-                         {"puck", 0.5, Eigen::Vector2d(0.0, 0.0), false}};
-  task.bodies.resize(2);
+  fesd::SceneTask task = fesd_test::pushAlongX();
   task.bodies[0].max_speed = 3.0;
   task.bodies[1].target = Eigen::Vector2d(2.0, 0.0);
   task.bodies[1].target_weight = 10.0;
-  task.horizon = 2.0;
   task.num_intervals = 6;
   std::vector<fesd::ContactPair> pairs;
   for (const fesd::PairDecision& decision : fesd::decidePairs(task)) pairs.push_back(decision.pair);

@@ -49,7 +49,6 @@ struct RobotOutcome {
   std::vector<double> target_distances;
   /// Per joint: |q_j(T) - target| (NaN without a target).
   std::vector<double> joint_target_distances;
-  int stages = 0, elements = 0;           ///< the solve's discretisation
   std::vector<AccuracyRung> refinements;  ///< solveRobotToAccuracy's rungs, in order
 };
 
