@@ -95,7 +95,8 @@ def random_request(rng):
     request.method = rng.choice([0, 1, 2, 7])
     request.has_wall_time_budget, request.wall_time_budget = True, number(0.5, 1.0)
     request.warm_start = rng.random() < 0.5
-    request.target_accuracy = rng.choice([0.0, 0.0, 1e-3, number(0.0, 1e-2)])
+    request.target_accuracy = rng.choice([0.0, 0.0, -1.0, 1e-3, number(0.0, 1e-2),
+                                          float("nan"), float("inf")])
     return request
 
 
@@ -197,6 +198,8 @@ class NodeServices(unittest.TestCase):
             ([], {"has_num_intervals": True, "num_intervals": 100000}, "intervals"),
             ([], {"urdf": "<robot name='broken'><link name="}, "malformed URDF"),
             ([], {"urdf_param": "/no/such/param"}, "no parameter"),
+            ([], {"target_accuracy": nan}, "target accuracy must be finite"),
+            ([], {"target_accuracy": float("inf")}, "target accuracy must be finite"),
             ([], {"urdf": chain_urdf(20000)}, "too many links: 20000"),
             ([body("object", workspace_lower=[nan, 0.0])], {}, "NaN"),
             ([], {"allowed_pairs": [ContactPair(first="object", second="nobody")]},
