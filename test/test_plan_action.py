@@ -195,7 +195,8 @@ class PlanAction(unittest.TestCase):
         self.assertFalse(unverified.solution.verified)
         self.assertEqual(len(unverified.solution.refinements), 0)
         self.assertEqual(unverified.solution.statistics.objective, solution.statistics.objective)
-        self.assertLess(unverified.solution.statistics.wall_time, solution.statistics.wall_time)
+        self.assertNotIn("accuracy target", unverified.message)
+        # (the time it saves is measured by bench/node_roundtrip.sh: timings do not belong here)
 
     def test_an_accuracy_target_out_of_a_tiny_budget_is_not_a_success(self):
         request = PlanRequest(target_accuracy=1e-3)

@@ -2,7 +2,7 @@
 """Integration tests of the fesd_trajopt node on a robot scene: the shipped planar arm
 (config/robots/planar_arm.urdf, joints shoulder, elbow, wrist about z) pushing a disc, joint
 settings refused by name, a joint velocity command simulated, ~joint_states during playback, a
-robot goal of the ~plan action with feedback and cancel."""
+robot goal of the ~plan action with feedback and cancel, a replan's warm start."""
 import math
 import time
 import unittest
@@ -150,6 +150,32 @@ class RobotNodeTest(unittest.TestCase):
         self.assertEqual(response.solution.verification_error, best)
         self.assertEqual(response.status == Solution.SUCCESS, best <= 1e-6)
         self.assertIn("accuracy target 1e-06", response.message)
+
+    def test_a_replan_warm_starts_from_the_last_robot_plan_or_says_why_not(self):
+        first = self.solve(arm_push_request())
+        self.assertEqual(first.status, Solution.SUCCESS, first.message)
+        moved = arm_push_request()
+        moved.bodies[0].target = Point(0.6, 0.21, 0.0)
+        moved.warm_start = True
+        warm = self.solve(moved)
+        statistics = warm.solution.statistics
+        print("planar arm push replanned 1 cm: %d Ipopt iterations warm, %d for the first plan"
+              % (statistics.ipopt_iterations, first.solution.statistics.ipopt_iterations))
+        self.assertEqual(warm.status, Solution.SUCCESS, warm.message)
+        self.assertTrue(statistics.warm_started, warm.message)
+        self.assertEqual(statistics.start, "previous solution")
+        self.assertEqual(statistics.nlp_variables, first.solution.statistics.nlp_variables)
+        self.assertLess(statistics.ipopt_iterations,
+                        first.solution.statistics.ipopt_iterations / 2)
+        self.assertLess(warm.solution.bodies[0].target_distance, 1e-3)
+        self.assertLess(warm.solution.verification_error, 1e-3)
+        longer = moved
+        longer.horizon = 2.5
+        cold = self.solve(longer)
+        self.assertEqual(cold.status, Solution.SUCCESS, cold.message)
+        self.assertFalse(cold.solution.statistics.warm_started)
+        self.assertEqual(cold.solution.statistics.start, "robot guess")
+        self.assertIn("cold start: the horizons differ: 2 -> 2.5", cold.message)
 
     def test_a_robot_goal_reports_every_relaxed_nlp_and_stops_when_cancelled(self):
         client = actionlib.SimpleActionClient(PLAN, PlanTrajectoryAction)

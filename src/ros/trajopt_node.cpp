@@ -256,6 +256,7 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
   if (fesd::solvedItsNlp(outcome.status)) {  // a solution of its NLP: it can warm-start
     std::lock_guard<std::mutex> lock(last_solution_mutex_);
     last_solution_ = std::make_shared<const fesd::SceneOutcome>(outcome);
+    last_robot_solution_.reset();
   }
   publish(task, solution);
 }
@@ -398,7 +399,12 @@ void TrajoptNode::handleRobotPlan(const fesd_trajopt::PlanRequest& request,
   options.verification.num_stages = config_.verification_stages;
   options.verification.num_elements = config_.verification_elements;
   options.monitor = monitor;
-  if (request.warm_start) build.notes.push_back("cold start: robot scenes are solved cold");
+  std::shared_ptr<const fesd::RobotOutcome> previous;
+  if (request.warm_start) {
+    std::lock_guard<std::mutex> lock(last_solution_mutex_);
+    previous = last_robot_solution_;
+  }
+  options.previous = previous.get();
   const double accuracy = targetAccuracy(request, config_);
   const fesd::RobotOutcome outcome =
       accuracy > 0.0 ? fesd::solveRobotToAccuracy(task, config_.limits, options, accuracy)
@@ -415,16 +421,29 @@ void TrajoptNode::handleRobotPlan(const fesd_trajopt::PlanRequest& request,
   solution = robotSolution(task, outcome);
   solution.status = statusCode(outcome.status);
   solution.message = outcome.message;
-  solution.statistics.start = "robot guess";
+  solution.statistics.start = fesd::startName(outcome.start, "robot guess", "previous round");
   solution.statistics.pair_rounds = outcome.pair_rounds;
+  solution.statistics.warm_started = outcome.start == fesd::OcpStart::kPrevious;
+  solution.statistics.nlp_variables = outcome.sizes.variables;
+  solution.statistics.nlp_constraints = outcome.sizes.constraints;
+  solution.statistics.complementarity_constraints = outcome.sizes.complementarities;
   fillAccuracy(!std::isnan(outcome.verification_error), outcome.verification_error,
                outcome.refinements, solution);
   solution.header.stamp = ros::Time::now();
   solution.header.frame_id = config_.frame_id;
   solution.statistics.wall_time = stopwatch.wallSeconds();
   solution.statistics.cpu_time = stopwatch.cpuSeconds();
+  if (request.warm_start && !solution.statistics.warm_started) {
+    build.notes.push_back("cold start: " + (previous ? outcome.cold_start_reason
+                                                     : std::string("no previous solution")));
+  }
   finish(answer, build.notes);
   ROS_INFO_STREAM("fesd_trajopt: " << answer.message << " (" << stopwatch.wallSeconds() << " s)");
+  if (fesd::solvedItsNlp(outcome.status)) {  // a solution of its NLP: it can warm-start
+    std::lock_guard<std::mutex> lock(last_solution_mutex_);
+    last_robot_solution_ = std::make_shared<const fesd::RobotOutcome>(outcome);
+    last_solution_.reset();
+  }
   publishRobot(task, solution);
 }
 

@@ -12,6 +12,7 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 
 #include "fesd_trajopt/integrator/fesd_integrator.h"
+#include "fesd_trajopt/scene/robot_solver.h"
 #include "fesd_trajopt/scene/robot_task.h"
 #include "fesd_trajopt/scene/scene_solver.h"
 #include "node_config.h"
@@ -26,7 +27,7 @@ namespace fesd_ros {
 /// (nav_msgs/Path) topics; ~playback, the last solution's motion; a static transform that makes
 /// ~frame_id exist for rviz. Requests are served concurrently, each with its own solver; their
 /// Ipopt solves take turns (the core serialises them, MUMPS not being thread-safe). The last
-/// successful solution is kept for warm starts.
+/// solution of its NLP, of a disc or a robot scene, is kept for warm starts.
 class TrajoptNode {
  public:
   TrajoptNode(ros::NodeHandle node, ros::NodeHandle private_node);
@@ -64,7 +65,9 @@ class TrajoptNode {
   std::mutex publish_mutex_;
   Playback playback_;
   std::mutex last_solution_mutex_;
-  std::shared_ptr<const fesd::SceneOutcome> last_solution_;  ///< for warm starts
+  // For warm starts: the last plan, of a disc scene or of a robot (the other is then empty).
+  std::shared_ptr<const fesd::SceneOutcome> last_solution_;
+  std::shared_ptr<const fesd::RobotOutcome> last_robot_solution_;
   PlanActionServer plan_server_;  ///< last: its worker thread uses everything above
 };
 

@@ -70,15 +70,9 @@ std::string AccuracyLadder::summary() const {
 SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
                              SceneSolveOptions options, double target_accuracy) {
   options.verify = true;
-  // Replanning starts on the rung the last plan needed: its warm start fits only there.
   const SceneOutcome* previous = options.previous;
-  DiscretizationOptions& grid = options.ocp.discretization;
-  if (previous && solvedItsNlp(previous->status) && previous->verified &&
-      previous->structure.stages >= grid.num_stages &&
-      previous->structure.elements >= grid.num_elements &&
-      previous->structure.switch_detection == grid.switch_detection) {
-    grid.num_stages = previous->structure.stages;
-    grid.num_elements = previous->structure.elements;
+  if (previous && solvedItsNlp(previous->status) && previous->verified) {
+    startOnPreviousRung(previous->structure, options.ocp.discretization);
   }
   return climbAccuracyLadder<SceneOutcome>(
       options, limits, target_accuracy,

@@ -47,6 +47,36 @@ void judgeTargets(const RobotTask& task, RobotOutcome& outcome) {
   }
 }
 
+/// What a warm start needs unchanged: the joints, the free bodies, the modelled pairs and the
+/// discretisation.
+PlanStructure robotPlanStructure(const RobotTask& task, const std::vector<RobotPair>& modelled,
+                                 const DiscretizationOptions& discretization) {
+  const RobotScene& scene = task.scene;
+  std::vector<std::string> moving, pairs;
+  for (const KinematicJoint& joint : scene.robot().joints) moving.push_back("joint " + joint.name);
+  for (const SceneBody& body : scene.discs().bodies()) moving.push_back(movingBodyName(body));
+  for (const RobotPair& pair : modelled) pairs.push_back(scene.pairName(pair));
+  return planStructure(std::move(moving), std::move(pairs), task.horizon, task.num_intervals,
+                       discretization);
+}
+
+/// The first round's solve: warm from options.previous when it fits, else from the guess.
+OcpSolution firstRound(OcpSolver& solver, const TrajectoryGuess& guess,
+                       const RobotSolveOptions& options, RobotOutcome& outcome) {
+  const RobotOutcome* previous = options.previous;
+  if (previous == nullptr) return solver.solve(guess);
+  outcome.cold_start_reason =
+      warmStartRefusal(previous->invalid.empty() && solvedItsNlp(previous->status),
+                       static_cast<int>(previous->report.solution.size()), previous->sizes,
+                       previous->structure, outcome.sizes, outcome.structure);
+  if (!outcome.cold_start_reason.empty()) return solver.solve(guess);
+  OcpSolution warm;
+  warm.report = previous->report;
+  OcpSolution solution = solver.solve(warm, guess);
+  if (solution.start != OcpStart::kPrevious) outcome.cold_start_reason = "the warm solve failed";
+  return solution;
+}
+
 }  // namespace
 
 double smallestBoundaryGap(const RobotScene& scene, const std::vector<RobotPair>& pairs,
@@ -97,16 +127,20 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
         std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
     OcpSolver solver(ocp, ocp_options);
     solver.setMonitor(options.monitor);
+    const NlpAssembly& nlp = solver.discretization().nlp();
+    outcome.sizes = {nlp.numVariables(), nlp.numConstraints(), nlp.numComplementarities()};
+    outcome.structure = robotPlanStructure(task, outcome.modelled, options.ocp.discretization);
     // The guess's multipliers belong to the candidates; the NLP's to the modelled pairs.
     TrajectoryGuess round_guess = planRobotGuess(task, outcome.modelled, elements).guess;
     OcpSolution solution =
         round == 1
-            ? solver.solve(round_guess)
+            ? firstRound(solver, round_guess, options, outcome)
             : solver.solve(trajectoryForPairs(previous_round, previous_pairs, outcome.modelled),
                            round_guess);
     if (round > 1) solution.report.addEffort(outcome.report);
     outcome.status = solution.status;
     outcome.message = solution.message;
+    outcome.start = solution.start;
     outcome.trajectory = solution.trajectory;
     outcome.report = solution.report;
     outcome.pair_rounds = round;
@@ -150,6 +184,10 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
 RobotOutcome solveRobotToAccuracy(const RobotTask& task, const TaskLimits& limits,
                                   RobotSolveOptions options, double target_accuracy) {
   options.verify = true;
+  const RobotOutcome* previous = options.previous;
+  if (previous && solvedItsNlp(previous->status) && !std::isnan(previous->verification_error)) {
+    startOnPreviousRung(previous->structure, options.ocp.discretization);
+  }
   return climbAccuracyLadder<RobotOutcome>(
       options, limits, target_accuracy,
       [&](const RobotSolveOptions& rung) { return solveRobotTask(task, limits, rung); },

@@ -35,37 +35,13 @@ MovingPart movingPartOf(const SceneTask& task, SceneOutcome& outcome) {
 
 PlanStructure planStructure(const SceneTask& task, const SceneOutcome& outcome,
                             const DiscretizationOptions& discretization) {
-  PlanStructure structure;
-  for (int b : outcome.moving_bodies) {
-    const SceneBody& body = task.scene.bodies()[b];
-    std::ostringstream text;
-    text << body.name << " (radius " << body.radius << ", "
-         << (body.actuated ? "actuated" : "passive") << ")";
-    structure.moving_bodies.push_back(text.str());
-  }
+  std::vector<std::string> moving, pairs;
+  for (int b : outcome.moving_bodies) moving.push_back(movingBodyName(task.scene.bodies()[b]));
   for (const PairDecision& decision : outcome.decisions) {
-    if (decision.modelled) structure.modelled_pairs.push_back(task.scene.pairName(decision.pair));
+    if (decision.modelled) pairs.push_back(task.scene.pairName(decision.pair));
   }
-  structure.horizon = task.horizon;
-  structure.intervals = task.num_intervals;
-  structure.elements = discretization.num_elements;
-  structure.stages = discretization.num_stages;
-  structure.switch_detection = discretization.switch_detection;
-  return structure;
-}
-
-/// "what differs: before -> now".
-template <class Value>
-std::string difference(const std::string& what, const Value& before, const Value& now) {
-  std::ostringstream text;
-  text << what << " differ: " << before << " -> " << now;
-  return text.str();
-}
-
-std::string joined(const std::vector<std::string>& items) {
-  std::string text;
-  for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
-  return "[" + text + "]";
+  return planStructure(std::move(moving), std::move(pairs), task.horizon, task.num_intervals,
+                       discretization);
 }
 
 /// The pairs of the decisions that are modelled, in their order.
@@ -221,46 +197,9 @@ double tightestRelaxation(const MpccReport& report, double fallback) {
 }  // namespace
 
 std::string warmStartRefusal(const SceneOutcome& previous, const SceneOutcome& now) {
-  // Only a success is a solution of its NLP: an interrupted solve may hold another stage's point.
-  if (!previous.solved() || !solvedItsNlp(previous.status) ||
-      static_cast<int>(previous.report.solution.size()) != previous.sizes.variables) {
-    return "no previous solution";
-  }
-  const std::string mismatch = warmStartMismatch(previous.structure, now.structure);
-  if (!mismatch.empty()) return mismatch;
-  if (previous.sizes.variables != now.sizes.variables ||
-      previous.sizes.constraints != now.sizes.constraints) {
-    const auto sizes = [](const NlpSizes& s) {
-      return std::to_string(s.variables) + " variables, " + std::to_string(s.constraints) +
-             " constraints";
-    };
-    return difference("the NLP sizes", sizes(previous.sizes), sizes(now.sizes));
-  }
-  return "";
-}
-
-std::string warmStartMismatch(const PlanStructure& previous, const PlanStructure& now) {
-  if (previous.moving_bodies != now.moving_bodies) {
-    return difference("the moving bodies", joined(previous.moving_bodies),
-                      joined(now.moving_bodies));
-  }
-  if (previous.modelled_pairs != now.modelled_pairs) {
-    return difference("the modelled contact pairs", joined(previous.modelled_pairs),
-                      joined(now.modelled_pairs));
-  }
-  if (previous.horizon != now.horizon) {
-    return difference("the horizons", previous.horizon, now.horizon);
-  }
-  if (previous.intervals != now.intervals || previous.elements != now.elements ||
-      previous.stages != now.stages || previous.switch_detection != now.switch_detection) {
-    const auto grid = [](const PlanStructure& s) {
-      return std::to_string(s.intervals) + " intervals x " + std::to_string(s.elements) +
-             " elements, n_s = " + std::to_string(s.stages) +
-             (s.switch_detection ? ", FESD" : ", standard");
-    };
-    return difference("the discretisations", grid(previous), grid(now));
-  }
-  return "";
+  return warmStartRefusal(previous.solved() && solvedItsNlp(previous.status),
+                          static_cast<int>(previous.report.solution.size()), previous.sizes,
+                          previous.structure, now.sizes, now.structure);
 }
 
 SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,

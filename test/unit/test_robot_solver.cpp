@@ -1,5 +1,6 @@
 // Robot tasks solved (scene/robot_solver.cpp): a refused task is not solved, joints driven to
-// their targets without contact, and the boundary gaps measured.
+// their targets without contact, a passive joint, a replan's warm start, and the boundary gaps.
+#include <cstdio>
 #include <memory>
 
 #include <gtest/gtest.h>
@@ -73,6 +74,45 @@ TEST(RobotSolver, APassiveJointTurnsOnlyWhileItsLinkIsPushed) {
       "target, verification %.2e\n",
       fesd::statusName(outcome.status).c_str(), turned, pushed_elements,
       outcome.target_distances[0], outcome.verification_error);
+}
+
+TEST(RobotSolver, AReplanWarmStartsFromTheLastPlanWhenItsStructureFits) {
+  // The arm push, then the disc's target moved by 1 cm: the same NLP, started from the last
+  // solution, ends in that plan's local optimum, here no worse than the cold solve's (moves of
+  // 2 cm let the cold solve find a cheaper one). A longer horizon changes the structure: cold,
+  // with the reason.
+  const auto robot =
+      std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf"));
+  fesd::RobotSolveOptions options;
+  options.ocp.discretization.num_elements = 2;
+  fesd::RobotTask task = fesd::planarArmPushTask(robot);
+  const fesd::RobotOutcome first = fesd::solveRobotTask(task, {}, options);
+  ASSERT_EQ(first.status, fesd::SolveStatus::kSuccess) << first.message;
+  EXPECT_EQ(first.start, fesd::OcpStart::kGuess);
+  EXPECT_EQ(first.sizes.variables, static_cast<int>(first.report.solution.size()));
+
+  task.bodies[0].target(1) += 0.01;
+  const fesd::RobotOutcome cold = fesd::solveRobotTask(task, {}, options);
+  options.previous = &first;
+  const fesd::RobotOutcome warm = fesd::solveRobotTask(task, {}, options);
+  ASSERT_EQ(warm.status, fesd::SolveStatus::kSuccess) << warm.message;
+  EXPECT_EQ(warm.start, fesd::OcpStart::kPrevious);
+  EXPECT_EQ(warm.cold_start_reason, "");
+  EXPECT_LT(warm.target_distances[0], 1e-3);
+  EXPECT_LT(warm.report.iterations, cold.report.iterations / 2);
+  EXPECT_LT(warm.report.objective, cold.report.objective * (1.0 + 1e-3));
+  EXPECT_LT(warm.verification_error, 1e-4);
+
+  fesd::RobotTask longer = task;
+  longer.horizon *= 1.25;
+  const fesd::RobotOutcome refused = fesd::solveRobotTask(longer, {}, options);
+  ASSERT_TRUE(fesd::solvedItsNlp(refused.status)) << refused.message;
+  EXPECT_EQ(refused.start, fesd::OcpStart::kGuess);
+  EXPECT_EQ(refused.cold_start_reason.rfind("the horizons differ", 0), 0u)
+      << refused.cold_start_reason;
+  std::printf("arm push replanned: cold %d, warm %d Ipopt iterations; objectives %.8g, %.8g\n",
+              cold.report.iterations, warm.report.iterations, cold.report.objective,
+              warm.report.objective);
 }
 
 TEST(RobotSolver, SmallestBoundaryGap) {

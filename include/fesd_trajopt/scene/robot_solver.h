@@ -8,8 +8,11 @@
 #include "fesd_trajopt/ocp/ocp_solver.h"
 #include "fesd_trajopt/scene/accuracy_ladder.h"
 #include "fesd_trajopt/scene/robot_task.h"
+#include "fesd_trajopt/scene/warm_start.h"
 
 namespace fesd {
+
+struct RobotOutcome;
 
 struct RobotSolveOptions {
   OcpOptions ocp;
@@ -26,6 +29,10 @@ struct RobotSolveOptions {
   bool verify = true;
   DiscretizationOptions verification;
   const SolveMonitor* monitor = nullptr;  ///< progress and cancel of the solve; not owned
+  /// Warm start from this outcome of an earlier solve when warmStartRefusal allows it (the
+  /// first round starts from its solution; if that solve fails, from the guess); nullptr:
+  /// cold. Not owned.
+  const RobotOutcome* previous = nullptr;
 };
 
 /// A robot task planned: the pair decisions, the first guess's pushing sphere, the solution and
@@ -50,16 +57,23 @@ struct RobotOutcome {
   /// Per joint: |q_j(T) - target| (NaN without a target).
   std::vector<double> joint_target_distances;
   std::vector<AccuracyRung> refinements;  ///< solveRobotToAccuracy's rungs, in order
+  OcpStart start = OcpStart::kGuess;      ///< where the last round's solve started
+  NlpSizes sizes;                         ///< of the last round's NLP
+  PlanStructure structure;                ///< of the last round: what a warm start needs
+  /// A warm start was asked for but the solve started cold (or fell back to cold): why.
+  std::string cold_start_reason;
 };
 
 /// validateRobotTask, decideRobotPairs, planRobotGuess, rounds of OcpSolver solves over the
-/// modelled pairs (lazy pairs: the first from the guess, each later one from the round before),
+/// modelled pairs (lazy pairs: the first from the guess or options.previous, each later one from
+/// the round before),
 /// the targets judged (a success that misses a weighted target by
 /// more than targetTolerance is kTargetNotReached) and, on request, the verification.
 RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
                             const RobotSolveOptions& options);
 
-/// The accuracy ladder (climbAccuracyLadder) of a robot task, as solveToAccuracy for discs.
+/// The accuracy ladder (climbAccuracyLadder) of a robot task, as solveToAccuracy for discs (a
+/// warm start starts on the previous plan's rung).
 RobotOutcome solveRobotToAccuracy(const RobotTask& task, const TaskLimits& limits,
                                   RobotSolveOptions options, double target_accuracy);
 

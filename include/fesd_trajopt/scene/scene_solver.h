@@ -11,27 +11,9 @@
 #include "fesd_trajopt/ocp/ocp_solver.h"
 #include "fesd_trajopt/scene/accuracy_ladder.h"
 #include "fesd_trajopt/scene/scene_task.h"
+#include "fesd_trajopt/scene/warm_start.h"
 
 namespace fesd {
-
-/// The sizes of the NLP a scene task became.
-struct NlpSizes {
-  int variables = 0, constraints = 0, complementarities = 0;
-};
-
-/// What a warm start needs unchanged besides the NLP's sizes: the moving bodies, the modelled
-/// pairs and the discretisation. Targets, initial positions, bounds and weights may differ.
-struct PlanStructure {
-  std::vector<std::string> moving_bodies;   ///< "name (radius r, actuated|passive)"
-  std::vector<std::string> modelled_pairs;  ///< DiscScene::pairName
-  double horizon = 0.0;
-  int intervals = 0, elements = 0, stages = 0;
-  bool switch_detection = true;
-};
-
-/// Why a solution of structure `previous` cannot warm-start a task of structure `now`; "" when
-/// it can.
-std::string warmStartMismatch(const PlanStructure& previous, const PlanStructure& now);
 
 /// A scene task solved or simulated, in the full scene's terms. A task that is refused
 /// (`invalid`) or cannot be met (`infeasible`) is never solved: status and trajectory stay

@@ -1,0 +1,102 @@
+// What a warm start needs (scene/warm_start.cpp): each difference of structure or NLP size named,
+// no warm start from a solve that did not solve its NLP, and the ladder's starting rung.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "fesd_trajopt/scene/warm_start.h"
+
+namespace {
+
+fesd::PlanStructure structure() {
+  fesd::PlanStructure s;
+  s.moving_bodies = {"joint shoulder", "puck (radius 0.3, passive)"};
+  s.modelled_pairs = {"hand/sphere_0/puck"};
+  s.horizon = 2.0;
+  s.intervals = 8;
+  s.elements = 2;
+  s.stages = 2;
+  return s;
+}
+
+const fesd::NlpSizes kSizes{1200, 1000, 64};
+
+std::string refusal(const fesd::PlanStructure& previous, const fesd::PlanStructure& now,
+                    const fesd::NlpSizes& now_sizes = kSizes) {
+  return fesd::warmStartRefusal(true, kSizes.variables, kSizes, previous, now_sizes, now);
+}
+
+TEST(WarmStart, AStructureNamesItsBodiesAndTakesTheGrid) {
+  EXPECT_EQ(fesd::movingBodyName({"puck", 0.3, Eigen::Vector2d::Zero(), false}),
+            "puck (radius 0.3, passive)");
+  EXPECT_EQ(fesd::movingBodyName({"pusher", 1.0, Eigen::Vector2d::Zero(), true}),
+            "pusher (radius 1, actuated)");
+  fesd::DiscretizationOptions grid;
+  grid.num_elements = 2;
+  grid.num_stages = 2;
+  const fesd::PlanStructure built =
+      fesd::planStructure(structure().moving_bodies, structure().modelled_pairs, 2.0, 8, grid);
+  EXPECT_EQ(fesd::warmStartMismatch(built, structure()), "");
+  grid.switch_detection = false;
+  EXPECT_FALSE(fesd::planStructure({}, {}, 2.0, 8, grid).switch_detection);
+}
+
+TEST(WarmStart, TheSameStructureAndSizesFit) {
+  EXPECT_EQ(refusal(structure(), structure()), "");
+}
+
+TEST(WarmStart, EachDifferenceIsNamedWithBothValues) {
+  fesd::PlanStructure now = structure();
+  now.moving_bodies.pop_back();
+  EXPECT_EQ(refusal(structure(), now),
+            "the moving bodies differ: [joint shoulder, puck (radius 0.3, passive)] -> [joint "
+            "shoulder]");
+  now = structure();
+  now.modelled_pairs.push_back("hand/sphere_1/puck");
+  EXPECT_EQ(refusal(structure(), now),
+            "the modelled contact pairs differ: [hand/sphere_0/puck] -> [hand/sphere_0/puck, "
+            "hand/sphere_1/puck]");
+  now = structure();
+  now.horizon = 3.0;
+  EXPECT_EQ(refusal(structure(), now), "the horizons differ: 2 -> 3");
+  now = structure();
+  now.stages = 3;
+  EXPECT_EQ(refusal(structure(), now),
+            "the discretisations differ: 8 intervals x 2 elements, n_s = 2, FESD -> 8 intervals "
+            "x 2 elements, n_s = 3, FESD");
+  EXPECT_EQ(refusal(structure(), structure(), {1201, 1000, 64}),
+            "the NLP sizes differ: 1200 variables, 1000 constraints -> 1201 variables, 1000 "
+            "constraints");
+}
+
+TEST(WarmStart, OnlyASolutionOfItsNlpWarmStarts) {
+  EXPECT_EQ(
+      fesd::warmStartRefusal(false, kSizes.variables, kSizes, structure(), kSizes, structure()),
+      "no previous solution");
+  // A point of another NLP (e.g. an interrupted fixed-grid stage) is no start either.
+  EXPECT_EQ(fesd::warmStartRefusal(true, 900, kSizes, structure(), kSizes, structure()),
+            "no previous solution");
+}
+
+TEST(WarmStart, ReplanningStartsOnThePreviousPlansRungWhenItIsFiner) {
+  fesd::DiscretizationOptions grid;
+  grid.num_stages = 2;
+  grid.num_elements = 2;
+  fesd::PlanStructure previous = structure();
+  previous.stages = 4;
+  previous.elements = 3;
+  fesd::startOnPreviousRung(previous, grid);
+  EXPECT_EQ(grid.num_stages, 4);
+  EXPECT_EQ(grid.num_elements, 3);
+  fesd::DiscretizationOptions finer = grid;
+  finer.num_elements = 5;  // the request asks for more than the previous plan had
+  fesd::startOnPreviousRung(previous, finer);
+  EXPECT_EQ(finer.num_elements, 5);
+  EXPECT_EQ(finer.num_stages, 4);
+  fesd::DiscretizationOptions standard;
+  standard.switch_detection = false;
+  fesd::startOnPreviousRung(previous, standard);
+  EXPECT_EQ(standard.num_stages, fesd::DiscretizationOptions{}.num_stages);
+}
+
+}  // namespace
