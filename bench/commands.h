@@ -17,6 +17,7 @@ int homotopyFailures(const Arguments& args);
 int simulationSweep(const Arguments& args);
 int replan(const Arguments& args);
 int planningSweep(const Arguments& args);
+int sweepAccuracy(const Arguments& args);
 int kkt(const Arguments& args);
 int robotPush(const Arguments& args);
 

@@ -68,8 +68,15 @@ const std::map<std::string, Command>& commands() {
         "    verified with every pair in reach: status, wall time, pairs in reach / modelled /\n"
         "    rounds, target distance, penetration; CSV and a summary against the showcase.\n"
         "    --families=push,wall,beside,second,showcase,cluttered --first-seed=0 --scenes=20\n"
-        "    --pairs=lazy|all --margin=0.1\n"
+        "    --pairs=lazy|all --margin=0.1 --guess-sigma=1e-2 (the homotopy's start from the\n"
+        "    plan)\n"
         "    --elements=3 --stages=2 --budget=120 --showcase=true"}},
+      {"sweep-accuracy",
+       {fesd_bench::sweepAccuracy,
+        "What accuracy costs over the planning sweep's scenes: each climbs the accuracy ladder\n"
+        "    to its end; per rung n_s, N_FE, status, wall time (solve + verification) and\n"
+        "    verification error, CSV. --families=push,wall,beside,second,showcase --first-seed=0\n"
+        "    --scenes=3 --elements=3 --stages=2 --max-stages=4 --max-elements=4 --budget=120"}},
       {"replan",
        {fesd_bench::replan,
         "Replanning: the showcase's object target moved --steps times by --step along x, each\n"

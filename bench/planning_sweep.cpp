@@ -45,6 +45,7 @@ int planningSweep(const Arguments& args) {
   options.ocp.homotopy.wall_time_budget = args.number("budget", 120.0);
   options.lazy_pairs = pairs == "lazy";
   options.pair_margin = args.number("margin", 0.1);
+  options.ocp.guess_sigma = args.number("guess-sigma", options.ocp.guess_sigma);
   applyHomotopyArguments(args, options.ocp.homotopy);
   fesd::SimulationOptions fine;
   fine.discretization.num_stages = std::max(3, options.ocp.discretization.num_stages);

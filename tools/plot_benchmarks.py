@@ -2,8 +2,8 @@
 """Plots the benchmark CSVs of docs/benchmarks/ into PNGs beside them (matplotlib, Agg).
 
 Usage: plot_benchmarks.py [directory]. Reads what exists of order_pds.csv, siconos_example1.csv,
-ocp_accuracy.csv, scaling.csv, order_filippov.csv and ocp_filippov.csv; a missing file skips its
-plots.
+ocp_accuracy.csv, scaling.csv, order_filippov.csv, ocp_filippov.csv and sweep_accuracy.csv; a
+missing file skips its plots.
 """
 import csv
 import os
@@ -143,6 +143,36 @@ def plot_scaling(directory, rows):
     save(figure, directory, "scaling.png")
 
 
+FAMILY_COLORS = {"push": "tab:blue", "wall": "tab:orange", "beside": "tab:green",
+                 "second": "tab:purple", "showcase": "tab:red", "cluttered": "tab:gray"}
+
+
+def plot_sweep_accuracy(directory, rows):
+    """Per planning-sweep scene, its accuracy ladder: verification error vs the wall time spent
+    up to each rung (solves and verifications), one line per scene, coloured by family."""
+    figure, axis = plt.subplots(figsize=(8, 5.5))
+    labelled = set()
+    for (name, seed), group in sorted(series([r for r in rows if int(r["rung"]) > 0],
+                                             lambda r: (r["family"], int(r["seed"]))).items()):
+        group = [r for r in group if r["status"] in ("success", "target_not_reached")]
+        if not group:
+            continue
+        group.sort(key=lambda r: int(r["rung"]))
+        axis.loglog([float(r["cumulative_s"]) for r in group],
+                    [max(float(r["verification_error"]), 1e-16) for r in group], "-o",
+                    color=FAMILY_COLORS.get(name, "black"), markersize=3, alpha=0.7,
+                    label=None if name in labelled else name)
+        labelled.add(name)
+    axis.axhline(1e-2, color="black", linestyle=":", linewidth=1,
+                 label="the node's default target_accuracy")
+    axis.set(xlabel="wall time up to the rung (solves + verifications) [s]",
+             ylabel="verification error (fine re-simulation)",
+             title="Planning sweep: each scene's accuracy ladder (first point: default grid)")
+    axis.grid(True, which="both", alpha=0.3)
+    axis.legend(fontsize=7)
+    save(figure, directory, "sweep_accuracy.png")
+
+
 def main():
     directory = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
         os.path.dirname(os.path.abspath(__file__)), "..", "docs", "benchmarks")
@@ -159,6 +189,9 @@ def main():
     filippov_ocp = read(directory, "ocp_filippov.csv")
     if filippov_orders or filippov_ocp:
         plot_filippov(directory, filippov_orders, filippov_ocp)
+    sweep_rows = read(directory, "sweep_accuracy.csv")
+    if sweep_rows:
+        plot_sweep_accuracy(directory, sweep_rows)
     return 0
 
 
