@@ -2,7 +2,8 @@
 """Integration tests of the fesd_trajopt node on a robot scene: the shipped planar arm
 (config/robots/planar_arm.urdf, joints shoulder, elbow, wrist about z) pushing a disc, joint
 settings refused by name, a joint velocity command simulated, ~joint_states during playback, a
-robot goal of the ~plan action with feedback and cancel, a replan's warm start."""
+robot goal of the ~plan action with feedback and cancel, a replan's warm start, a puck given in
+the robot's URDF."""
 import math
 import time
 import unittest
@@ -150,6 +151,32 @@ class RobotNodeTest(unittest.TestCase):
         self.assertEqual(response.solution.verification_error, best)
         self.assertEqual(response.status == Solution.SUCCESS, best <= 1e-6)
         self.assertIn("accuracy target 1e-06", response.message)
+
+    def test_a_puck_in_the_robots_urdf_is_a_free_body_of_its_scene(self):
+        # The arm push with the disc given in the URDF, on a floating joint of the base: the
+        # request names it to give its target, as a body of a disc scene's URDF.
+        urdf = rospy.get_param(ARM).replace("</robot>", """
+          <link name="puck"><collision><geometry><sphere radius="0.05"/></geometry></collision>
+          </link>
+          <joint name="puck_joint" type="floating"><parent link="base"/><child link="puck"/>
+            <origin xyz="0.6 0 0"/></joint></robot>""")
+        request = arm_push_request()
+        request.urdf_param, request.urdf = "", urdf
+        request.bodies = [BodySpec(name="puck", target=Point(0.6, 0.2, 0.0), target_weight=100.0)]
+        response = self.solve(request)
+        self.assertEqual(response.status, Solution.SUCCESS, response.message)
+        puck = response.solution.bodies[0]
+        self.assertEqual(puck.name, "puck")
+        self.assertAlmostEqual(puck.positions[0].x, 0.6, places=12)
+        self.assertLess(puck.target_distance, 1e-3)
+        self.assertLess(response.solution.verification_error, 1e-3)
+        # A free link that one body cannot stand for is refused by name.
+        two_spheres = urdf.replace("</collision>\n          </link>", """</collision>
+          <collision><origin xyz="0.1 0 0"/><geometry><sphere radius="0.05"/></geometry>
+          </collision></link>""")
+        request.urdf = two_spheres
+        self.assert_invalid(request, "free link 'puck' (joint 'puck_joint') must carry exactly "
+                                     "one collision sphere")
 
     def test_a_replan_warm_starts_from_the_last_robot_plan_or_says_why_not(self):
         first = self.solve(arm_push_request())

@@ -109,6 +109,7 @@ RobotTaskBuild buildRobotTask(const NodeConfig& config, const SceneFields& scene
   // The objects and obstacles come from the request, configured like a disc scene's.
   fesd::SceneTask objects;
   objects.scene = fesd::DiscScene(read.dimension);
+  objects.scene.bodies() = read.free_bodies;  // the URDF's pucks, configured like its discs
   build.error = applySceneFields(config, scene, objects);
   if (!build.error.empty()) return build;
 

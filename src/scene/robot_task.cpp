@@ -79,9 +79,13 @@ std::string validateRobotTask(const RobotTask& task, const TaskLimits& limits) {
   if (static_cast<int>(discs.walls().size()) > limits.max_walls) {
     return "too many walls (limit " + std::to_string(limits.max_walls) + ")";
   }
-  if (!scene.robot().free_links.empty()) {
-    return "link '" + scene.robot().free_links.front().link +
-           "' is on a planar or floating joint: robots with free links are not supported yet";
+  for (const FreeLink& free : scene.robot().free_links) {
+    if (std::none_of(discs.bodies().begin(), discs.bodies().end(),
+                     [&](const SceneBody& body) { return body.name == free.link; })) {
+      return "link '" + free.link +
+             "' is on a planar or floating joint but no free body of the scene stands for it "
+             "(robotForScene makes one)";
+    }
   }
   if (static_cast<int>(task.joints.size()) != scene.numJoints()) {
     return "one joint task per robot coordinate is needed";

@@ -1,5 +1,7 @@
 // Robots read for scenes (scene/robot_from_urdf.cpp): planarity inferred, forced planar refused
-// naming the joint that leaves the plane, forced spatial taken.
+// naming the joint that leaves the plane, forced spatial taken, free links as free bodies.
+#include <string>
+
 #include <gtest/gtest.h>
 
 #include "fesd_trajopt/scene/robot_from_urdf.h"
@@ -33,6 +35,76 @@ TEST(RobotFromUrdf, ForcingPlanarOnASpatialRobotNamesTheJoint) {
       fesd::robotForScene(fesd_test::readRobotFile("planar_arm.urdf"), PlanarChoice::kSpatial);
   ASSERT_EQ(arm.error, "");
   EXPECT_EQ(arm.dimension, 3);
+}
+
+/// A one-joint arm and a puck on a free joint of the world; `puck` is the puck link's body,
+/// `joint` its joint's type.
+std::string armAndPuck(const std::string& puck, const std::string& joint = "floating",
+                       const std::string& parent = "world") {
+  return R"(<robot name="arm_and_puck"><link name="world"/>
+    <link name="arm"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
+    <joint name="hinge" type="revolute"><parent link="world"/><child link="arm"/>
+      <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+    <link name="puck">)" +
+         puck + R"(</link>
+    <joint name="loose" type=")" +
+         joint + R"("><parent link=")" + parent + R"("/><child link="puck"/>
+      <origin xyz="0.6 0.2 0"/><axis xyz="0 0 1"/></joint></robot>)";
+}
+
+const std::string kSphere =
+    R"(<collision><origin xyz="0 0.1 0"/><geometry><sphere radius="0.05"/></geometry></collision>)";
+
+TEST(RobotFromUrdf, AFreeLinkWithOneSphereIsAFreeBodyAtItsUrdfPose) {
+  for (const std::string joint : {"floating", "planar"}) {
+    const fesd::RobotForScene read =
+        fesd::robotForScene(armAndPuck(kSphere, joint), PlanarChoice::kInferred);
+    ASSERT_EQ(read.error, "") << joint;
+    EXPECT_EQ(read.dimension, 2);
+    EXPECT_EQ(read.robot->numCoordinates(), 1);
+    ASSERT_EQ(read.free_bodies.size(), 1u);
+    const fesd::SceneBody& puck = read.free_bodies[0];
+    EXPECT_EQ(puck.name, "puck");
+    EXPECT_EQ(puck.radius, 0.05);
+    EXPECT_FALSE(puck.actuated);
+    EXPECT_TRUE(puck.position.isApprox(Eigen::Vector2d(0.6, 0.3), 1e-12)) << puck.position;
+  }
+  const fesd::RobotForScene spatial =
+      fesd::robotForScene(armAndPuck(kSphere), PlanarChoice::kSpatial);
+  ASSERT_EQ(spatial.error, "");
+  ASSERT_EQ(spatial.free_bodies.size(), 1u);
+  EXPECT_TRUE(spatial.free_bodies[0].position.isApprox(Eigen::Vector3d(0.6, 0.3, 0.0), 1e-12));
+}
+
+TEST(RobotFromUrdf, AFreeLinkNoBodyCanStandForIsRefusedByName) {
+  const auto error = [](const std::string& urdf, PlanarChoice choice = PlanarChoice::kInferred) {
+    return fesd::robotForScene(urdf, choice).error;
+  };
+  EXPECT_EQ(error(armAndPuck(kSphere + kSphere)),
+            "free link 'puck' (joint 'loose') must carry exactly one collision sphere (or "
+            "cylinder normal to the plane), it has 2 collision element(s)");
+  EXPECT_EQ(error(armAndPuck(R"(<collision><geometry><box size="0.1 0.1 0.1"/></geometry>
+      </collision>)")),
+            "free link 'puck' (joint 'loose') must carry exactly one collision sphere (or "
+            "cylinder normal to the plane), it has 1 collision element(s) of another shape");
+  EXPECT_EQ(error(armAndPuck(kSphere, "floating", "arm")),
+            "free link 'puck' (joint 'loose') hangs from a moving link: only free links of the "
+            "world are modelled");
+  EXPECT_EQ(error(armAndPuck(kSphere, "planar"), PlanarChoice::kSpatial),
+            "free link 'puck' (joint 'loose') is planar in a spatial scene: its plane is not "
+            "modelled");
+  std::string tilted = armAndPuck(kSphere, "planar");
+  tilted.replace(tilted.find(R"(<axis xyz="0 0 1"/></joint></robot>)"), 17,
+                 R"(<axis xyz="1 0 0"/>)");
+  EXPECT_EQ(error(tilted),
+            "free link 'puck' (joint 'loose') slides in a plane other than the scene's (x, y): "
+            "its normal must be z");
+  std::string with_child = armAndPuck(kSphere);
+  with_child.replace(with_child.rfind("</robot>"), 8, R"(<link name="lid"/>
+    <joint name="glued" type="fixed"><parent link="puck"/><child link="lid"/></joint></robot>)");
+  EXPECT_EQ(error(with_child),
+            "free link 'puck' (joint 'loose') has links below it: a free link is modelled as one "
+            "body");
 }
 
 TEST(RobotFromUrdf, BrokenUrdfIsRefused) {

@@ -127,7 +127,7 @@ TEST(RobotTask, OcpBoundsAndCosts) {
 
 namespace {
 
-TEST(RobotTask, RobotsWithFreeLinksAreRefused) {
+TEST(RobotTask, AFreeLinkNeedsAFreeBodyOfTheScene) {
   const fesd::KinematicModelResult built = fesd::buildKinematicModel(R"(<robot name="slider">
     <link name="base"/>
     <link name="arm"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
@@ -138,12 +138,15 @@ TEST(RobotTask, RobotsWithFreeLinksAreRefused) {
       <origin xyz="1 0 0"/></joint>
   </robot>)");
   ASSERT_EQ(built.error, "");
-  const fesd::RobotTask task(
-      fesd::RobotScene(std::make_shared<const fesd::KinematicModel>(built.model),
-                       Eigen::VectorXd::Zero(1), fesd::DiscScene(2)));
-  EXPECT_EQ(fesd::validateRobotTask(task, {}),
-            "link 'puck' is on a planar or floating joint: robots with free links are not "
-            "supported yet");
+  const auto robot = std::make_shared<const fesd::KinematicModel>(built.model);
+  const fesd::RobotTask bare(fesd::RobotScene(robot, Eigen::VectorXd::Zero(1), fesd::DiscScene(2)));
+  EXPECT_EQ(fesd::validateRobotTask(bare, {}),
+            "link 'puck' is on a planar or floating joint but no free body of the scene stands "
+            "for it (robotForScene makes one)");
+  fesd::DiscScene discs(2);
+  discs.bodies().push_back({"puck", 0.1, Eigen::Vector2d(1.0, 0.0), false});
+  const fesd::RobotTask with_body(fesd::RobotScene(robot, Eigen::VectorXd::Zero(1), discs));
+  EXPECT_EQ(fesd::validateRobotTask(with_body, {}), "");
 }
 
 }  // namespace

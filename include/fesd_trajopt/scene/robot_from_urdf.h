@@ -2,8 +2,10 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "fesd_trajopt/kinematics/kinematic_model.h"
+#include "fesd_trajopt/scene/disc_scene.h"
 
 namespace fesd {
 
@@ -14,13 +16,20 @@ enum class PlanarChoice { kInferred, kPlanar, kSpatial };
 struct RobotForScene {
   std::shared_ptr<const KinematicModel> robot;
   int dimension = 3;
+  /// The robot's free links (planar or floating joints) as passive free bodies at their URDF
+  /// poses, named after their links.
+  std::vector<SceneBody> free_bodies;
   std::string error;
 };
 
 /// Reads a robot (buildKinematicModel) and decides its scene's dimension: planar (2) iff every
 /// joint keeps the spheres in the (x, y) plane (isPlanar) unless forced. Forcing planar on a robot
 /// that leaves the plane is refused, naming the first joint that does (firstJointLeavingPlane).
-/// Planar models also take cylinders normal to the plane as discs.
+/// Planar models also take cylinders normal to the plane as discs. A free link becomes a free
+/// body of the scene (a puck in the robot's URDF) when a body can stand for it: it hangs from a
+/// link fixed to the world, carries exactly one collision sphere (cylinder normal to the plane in
+/// planar scenes) and no links below it, and a planar joint only in a planar scene; any other is
+/// refused by name (a rigid group of spheres that translates is not modelled).
 RobotForScene robotForScene(const std::string& urdf_xml, PlanarChoice choice,
                             const KinematicModelOptions& limits = {});
 

@@ -58,8 +58,8 @@ std::pair<double, double> jointBounds(const RobotTask& task, int joint);
 
 /// Checks a robot task as validateTask does a disc task (non-finite numbers, sizes beyond the
 /// limits including limits.max_spheres, joints starting outside their bounds, bodies' radii,
-/// pairs overlapping at the start; a robot with free links, not supported yet). Returns "" or a
-/// message naming the problem.
+/// pairs overlapping at the start; a free link of the robot that no free body of the scene
+/// stands for, see robotForScene). Returns "" or a message naming the problem.
 std::string validateRobotTask(const RobotTask& task, const TaskLimits& limits);
 
 /// Whether a pair is modelled, and why (or why not).
