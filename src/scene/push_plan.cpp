@@ -509,6 +509,67 @@ double unpushableFraction(const std::vector<PushAssignment>& placed,
   return (G * nonnegativeLeastSquares(G, displacement) - displacement).norm() / displacement.norm();
 }
 
+/// The fastest a body moves along unit direction d under a bound on each coordinate's speed.
+double speedAlong(double max_speed, const Eigen::VectorXd& d) {
+  return max_speed / d.cwiseAbs().maxCoeff();
+}
+
+/// The shortest approach and push phases the pushers' speed bounds allow for the planned pushes
+/// (each pusher straight to its pose, then each pushed body at k / (k + 1) of its fastest
+/// pusher's speed along the push, see pushableInTime).
+struct PhaseTimes {
+  double approach = 0.0, push = 0.0;
+};
+PhaseTimes leastPhaseTimes(const SceneTask& planned, const std::vector<PushAssignment>& pushes) {
+  const DiscScene& scene = planned.scene;
+  PhaseTimes least;
+  for (size_t b = 0; b < scene.bodies().size(); ++b) {
+    const Eigen::VectorXd start = scene.bodies()[b].position;
+    double speed = 0.0, pushers = 0.0;
+    for (const PushAssignment& push : pushes) {
+      if (push.pushed != static_cast<int>(b)) continue;
+      const double max_speed = planned.bodies[push.pusher].max_speed;
+      const Eigen::VectorXd way = start + push.offset - scene.bodies()[push.pusher].position;
+      if (way.norm() > 0.0) {
+        least.approach =
+            std::max(least.approach, way.norm() / speedAlong(max_speed, way.normalized()));
+      }
+      const Eigen::VectorXd along = planned.bodies[b].target - start;
+      if (along.norm() > 0.0) speed = std::max(speed, speedAlong(max_speed, along.normalized()));
+      pushers += 1.0;
+    }
+    if (speed > 0.0) {
+      least.push = std::max(least.push, (planned.bodies[b].target - start).norm() /
+                                            (speed * pushers / (pushers + 1.0)));
+    }
+  }
+  return least;
+}
+
+/// Whether the placed pushers can push their body from start to end within the horizon, judged
+/// optimistically so that only ends clearly out of time are replaced: the nearest pusher at its
+/// pose at full speed, then the body at k / (k + 1) of the fastest pusher's speed along the push
+/// (the projection shares a push between pushers and pushed: one pusher moves a passive body at
+/// half its own speed, k pushing together at k / (k + 1) of theirs).
+bool pushableInTime(const SceneTask& task, const std::vector<PushAssignment>& placed,
+                    const Eigen::VectorXd& start, const Eigen::VectorXd& end) {
+  const double length = (end - start).norm();
+  if (length == 0.0) return true;
+  if (placed.empty()) return false;
+  const Eigen::VectorXd direction = (end - start) / length;
+  double approach = std::numeric_limits<double>::infinity(), speed = 0.0;
+  for (const PushAssignment& push : placed) {
+    const double max_speed = task.bodies[push.pusher].max_speed;
+    const Eigen::VectorXd way = start + push.offset - task.scene.bodies()[push.pusher].position;
+    const double distance = way.norm();
+    approach = std::min(approach,
+                        distance == 0.0 ? 0.0 : distance / speedAlong(max_speed, way / distance));
+    speed = std::max(speed, speedAlong(max_speed, direction));
+  }
+  const double k = static_cast<double>(placed.size());
+  return approach + length / (speed * k / (k + 1.0)) <= task.horizon;
+}
+
 /// Whether a body ends at p clear of the obstacles and walls; with `path_from`, pushed straight
 /// there from that start without meeting an obstacle (a replacement end behind an obstacle would
 /// need a push around it).
@@ -548,23 +609,38 @@ std::vector<Eigen::VectorXd> searchDirections(int dim) {
 }
 
 /// Where the plan pushes a passive body: its target when the pushers can be placed to push it
-/// there (workspace bounds) and it is clear of obstacles and walls; otherwise the nearest end
+/// there (workspace bounds), can push it there in time (pushableInTime) and it is clear of
+/// obstacles and walls; otherwise the nearest end
 /// that is, with a straight path clear of obstacles, on rings around the target 2 % of the
 /// push's length apart, refined by bisection along the direction found (the start if none is).
 /// A soft target out of reach then gets a first guess near the best plan, not one that pushes
-/// wherever the pushers happen to fit.
-Eigen::VectorXd pushableEnd(const SceneTask& task, const std::vector<ContactPair>& pairs,
-                            int pushed, const std::vector<bool>& busy) {
+/// wherever the pushers happen to fit. Returned as a short push (the target itself when it is
+/// pushable), marked time_limited when only the time rules the target out.
+PushPlan::ShortPush pushableEnd(const SceneTask& task, const std::vector<ContactPair>& pairs,
+                                int pushed, const std::vector<bool>& busy) {
   const DiscScene& scene = task.scene;
   const Eigen::VectorXd start = scene.bodies()[pushed].position;
   const Eigen::VectorXd target = task.bodies[pushed].target;
-  const auto pushable = [&](const Eigen::VectorXd& end) {
+  const auto placeable = [&](const Eigen::VectorXd& end, bool in_time) {
     std::vector<bool> trial = busy;
-    return unpushableFraction(placePushers(task, pairs, pushed, end, trial), end - start) <
-           kUnpushableFraction;
+    const std::vector<PushAssignment> placed = placePushers(task, pairs, pushed, end, trial);
+    return unpushableFraction(placed, end - start) < kUnpushableFraction &&
+           (!in_time || pushableInTime(task, placed, start, end));
   };
+  const auto pushable = [&](const Eigen::VectorXd& end) { return placeable(end, true); };
   // The target's own path may go around obstacles (besidePath); a replacement's may not.
-  if (clearEnd(scene, pushed, target) && pushable(target)) return target;
+  const bool placeable_target = clearEnd(scene, pushed, target) && placeable(target, false);
+  if (placeable_target && pushable(target)) return {pushed, target};
+  PushPlan::ShortPush short_push{pushed, start, placeable_target};
+  if (short_push.time_limited) {  // as far as time allows on the way to the target
+    double reachable = 0.0, unreachable = 1.0;
+    for (int halving = 0; halving < 20; ++halving) {
+      const double middle = 0.5 * (reachable + unreachable);
+      (pushable(start + middle * (target - start)) ? reachable : unreachable) = middle;
+    }
+    short_push.end = start + reachable * (target - start);
+    return short_push;
+  }
   const auto replacement = [&](const Eigen::VectorXd& end) {
     return clearEnd(scene, pushed, end, &start) && pushable(end);
   };
@@ -580,10 +656,11 @@ Eigen::VectorXd pushableEnd(const SceneTask& task, const std::vector<ContactPair
         const double middle = 0.5 * (reachable + unreachable);
         (replacement(target + middle * direction) ? reachable : unreachable) = middle;
       }
-      return target + reachable * direction;
+      short_push.end = target + reachable * direction;
+      return short_push;
     }
   }
-  return start;
+  return short_push;
 }
 
 }  // namespace
@@ -600,8 +677,9 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
         (t.target - scene.bodies()[b].position).norm() == 0.0) {
       continue;
     }
-    const Eigen::VectorXd end = pushableEnd(task, pairs, b, busy);
-    if (end != t.target) plan.short_pushes.push_back({b, end});
+    const PushPlan::ShortPush short_push = pushableEnd(task, pairs, b, busy);
+    const Eigen::VectorXd end = short_push.end;
+    if (end != t.target) plan.short_pushes.push_back(short_push);
     planned.bodies[b].target = end;
     const std::vector<PushAssignment> pushers = placePushers(task, pairs, b, end, busy);
     plan.pushes.insert(plan.pushes.end(), pushers.begin(), pushers.end());
@@ -645,6 +723,11 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
   if (!plan.pushes.empty() && total > 0.0) {
     plan.contact_time = task.horizon * std::sqrt(approach) / total;
     plan.release_time = task.horizon * (std::sqrt(approach) + std::sqrt(push)) / total;
+    // No phase shorter than the speed bounds allow (a push to the edge of what time allows).
+    const PhaseTimes least = leastPhaseTimes(planned, plan.pushes);
+    plan.contact_time = std::min(std::max(plan.contact_time, least.approach), task.horizon);
+    plan.release_time =
+        std::min(std::max(plan.release_time, plan.contact_time + least.push), task.horizon);
   }
   const auto motion = std::make_shared<const PlannedMotion>(planned, pairs, plan.pushes,
                                                             plan.contact_time, plan.release_time);

@@ -1,6 +1,7 @@
 #include "fesd_trajopt/scene/robot_guess.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "fesd_trajopt/kinematics/forward_kinematics.h"
 #include "fesd_trajopt/kinematics/inverse_kinematics.h"
@@ -40,7 +41,8 @@ PushPlan proxyPlan(const RobotTask& task, int sphere, int body, const Eigen::Vec
   proxy.scene.obstacles() = scene.discs().obstacles();
   proxy.scene.walls() = scene.discs().walls();
   proxy.bodies.resize(2);
-  proxy.bodies[0].max_speed = 1.0;
+  // The sphere's speed in the scene is the joints' doing, not one bound: no time limit here.
+  proxy.bodies[0].max_speed = std::numeric_limits<double>::infinity();
   proxy.bodies[1] = task.bodies[body];
   proxy.horizon = task.horizon;
   proxy.num_intervals = task.num_intervals;

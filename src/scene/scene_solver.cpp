@@ -110,7 +110,8 @@ std::string nlpTooLarge(const NlpAssembly& nlp, size_t modelled_pairs, const Sce
 SceneTask reachableTask(const SceneTask& task, const PushPlan& plan) {
   SceneTask reachable = task;
   for (const PushPlan::ShortPush& push : plan.short_pushes) {
-    reachable.bodies[push.body].target = push.end;
+    // Out of time only: the real target's optimum pushes as far as time allows, as planned.
+    if (!push.time_limited) reachable.bodies[push.body].target = push.end;
   }
   return reachable;
 }
@@ -132,9 +133,15 @@ void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const PushPlan& 
            << targetTolerance(t.target_weight);
     for (const PushPlan::ShortPush& push : plan.short_pushes) {
       if (push.body != static_cast<int>(b)) continue;
-      missed << " (out of the pushers' reach: workspace bounds, obstacles or walls; planned to "
-                "the nearest end they can push it to, ("
-             << push.end.transpose() << "))";
+      if (push.time_limited) {
+        missed << " (out of the pushers' reach within the horizon at their speed bounds; planned "
+                  "as far towards it as time allows, ("
+               << push.end.transpose() << "))";
+      } else {
+        missed << " (out of the pushers' reach: workspace bounds, obstacles or walls; planned to "
+                  "the nearest end they can push it to, ("
+               << push.end.transpose() << "))";
+      }
     }
   }
   if (outcome.status == SolveStatus::kSuccess && missed.tellp() > 0) {

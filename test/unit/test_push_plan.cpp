@@ -191,6 +191,32 @@ TEST(PushPlan, ATargetBeyondThePushersReachIsReplacedByTheNearestEndTheyCanPushT
   EXPECT_LT((plan.guess.state(plan.release_time).segment<2>(4) - end).norm(), 1e-6);
 }
 
+TEST(PushPlan, ATargetOutOfTimeIsPushedAsFarAsTimeAllowsWithinTheSpeedBounds) {
+  // The pusher (|u_d| <= 2) 2 from its pose behind the puck: 1 s to get there, then 1 s pushing
+  // at half its speed (one pusher shares the push with the puck): the puck gets to x = 1.
+  fesd::SceneTask task = fesd_test::pushingTask();
+  task.bodies[1].target_weight = 100.0;
+  task.bodies[1].target = Eigen::Vector2d(0.8, 0.0);
+  EXPECT_TRUE(fesd::planPushes(task, task.scene.allPairs()).short_pushes.empty());
+  task.bodies[1].target = Eigen::Vector2d(1.5, 0.0);
+  const fesd::PushPlan plan = fesd::planPushes(task, task.scene.allPairs());
+  ASSERT_EQ(plan.short_pushes.size(), 1u);
+  EXPECT_TRUE(plan.short_pushes[0].time_limited);
+  EXPECT_LT((plan.short_pushes[0].end - Eigen::Vector2d(1.0, 0.0)).norm(), 1e-5);
+  EXPECT_NEAR(plan.contact_time, 1.0, 1e-5);  // the approach at full speed
+  EXPECT_NEAR(plan.release_time, 2.0, 1e-5);
+  for (const Eigen::VectorXd& u : plan.guess.controls)
+    EXPECT_LE(u.cwiseAbs().maxCoeff(), 2.0 + 1e-4);
+  // Out of the workspace, not of time: not time-limited.
+  task.bodies[1].workspace_upper = Eigen::Vector2d(0.5, 10.0);
+  task.bodies[1].workspace_lower = Eigen::Vector2d(-10.0, -10.0);
+  task.bodies[0].workspace_upper = Eigen::Vector2d(-0.5, 10.0);
+  task.bodies[0].workspace_lower = Eigen::Vector2d(-10.0, -10.0);
+  const fesd::PushPlan bounded = fesd::planPushes(task, task.scene.allPairs());
+  ASSERT_EQ(bounded.short_pushes.size(), 1u);
+  EXPECT_FALSE(bounded.short_pushes[0].time_limited);
+}
+
 TEST(PushPlan, ATargetInsideAnObstacleIsReplacedByAnEndClearOfIt) {
   fesd::SceneTask task = example::task(40, Eigen::Vector2d(0.0, 10.0));
   task.scene.obstacles().push_back({"rock", 1.0, Eigen::Vector2d(0.0, 10.5)});

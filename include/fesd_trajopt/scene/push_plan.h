@@ -37,11 +37,15 @@ struct PushPlan {
   /// Where the push phase begins and ends (both the horizon when nothing is pushed).
   double contact_time = 0.0, release_time = 0.0;
   std::vector<PushAssignment> pushes;
-  /// Pushed bodies whose target the pushers cannot reach (workspace bounds, or it lies in an
-  /// obstacle): the plan pushes them to the nearest end they can.
+  /// Pushed bodies whose target the pushers cannot reach (workspace bounds, it lies in an
+  /// obstacle, or not within the horizon at their speed bounds): the plan pushes them to the
+  /// nearest end they can.
   struct ShortPush {
     int body;
     Eigen::VectorXd end;
+    /// Only the time rules the target out: pushing towards it as far as time allows (the end)
+    /// is then the best plan for the target itself.
+    bool time_limited = false;
   };
   std::vector<ShortPush> short_pushes;
   TrajectoryGuess guess;  ///< of the task's full state; multipliers per pair of planPushes' list
