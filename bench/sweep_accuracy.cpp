@@ -34,9 +34,10 @@ int sweepAccuracy(const Arguments& args) {
   for (const std::string& family : families) {
     for (int seed = first_seed; seed < first_seed + scenes; ++seed) {
       const ps::PlanningScene scene = ps::scene(family, seed);
-      // No rung meets a zero target: the ladder runs to its end and reports every rung.
-      const fesd::SceneOutcome outcome =
-          fesd::solveToAccuracy(scene.task, limits, options, std::numeric_limits<double>::min());
+      // No rung meets a negative target: the ladder runs to its end (or the budget's) and
+      // reports every rung.
+      const fesd::SceneOutcome outcome = fesd::solveToAccuracy(
+          scene.task, limits, options, -std::numeric_limits<double>::infinity());
       double cumulative = 0.0;
       for (size_t r = 0; r < outcome.refinements.size(); ++r) {
         const fesd::AccuracyRung& rung = outcome.refinements[r];

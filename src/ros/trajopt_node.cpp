@@ -238,7 +238,7 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
   solution.message = outcome.message;  // with the warning on unresolved switches
   solution.statistics.start = fesd::startName(outcome.start, "push plan", "previous round");
   solution.statistics.pair_rounds = outcome.pair_rounds;
-  solution.statistics.warm_started = outcome.start == fesd::OcpStart::kPrevious;
+  solution.statistics.warm_started = outcome.warm_started;
   solution.statistics.nlp_variables = outcome.sizes.variables;
   solution.statistics.nlp_constraints = outcome.sizes.constraints;
   solution.statistics.complementarity_constraints = outcome.sizes.complementarities;
@@ -423,7 +423,7 @@ void TrajoptNode::handleRobotPlan(const fesd_trajopt::PlanRequest& request,
   solution.message = outcome.message;
   solution.statistics.start = fesd::startName(outcome.start, "robot guess", "previous round");
   solution.statistics.pair_rounds = outcome.pair_rounds;
-  solution.statistics.warm_started = outcome.start == fesd::OcpStart::kPrevious;
+  solution.statistics.warm_started = outcome.warm_started;
   solution.statistics.nlp_variables = outcome.sizes.variables;
   solution.statistics.nlp_constraints = outcome.sizes.constraints;
   solution.statistics.complementarity_constraints = outcome.sizes.complementarities;

@@ -514,9 +514,10 @@ double speedAlong(double max_speed, const Eigen::VectorXd& d) {
   return max_speed / d.cwiseAbs().maxCoeff();
 }
 
-/// The shortest approach and push phases the pushers' speed bounds allow for the planned pushes
-/// (each pusher straight to its pose, then each pushed body at k / (k + 1) of its fastest
-/// pusher's speed along the push, see pushableInTime).
+/// The shortest approach and push phases the pushers' speed bounds allow for the planned pushes,
+/// by the rule of pushableInTime (each body's nearest pusher straight to its pose, then the body
+/// at k / (k + 1) of its fastest pusher's speed along the push), so that a push it judged in
+/// time keeps a push phase.
 struct PhaseTimes {
   double approach = 0.0, push = 0.0;
 };
@@ -525,19 +526,20 @@ PhaseTimes leastPhaseTimes(const SceneTask& planned, const std::vector<PushAssig
   PhaseTimes least;
   for (size_t b = 0; b < scene.bodies().size(); ++b) {
     const Eigen::VectorXd start = scene.bodies()[b].position;
-    double speed = 0.0, pushers = 0.0;
+    double speed = 0.0, pushers = 0.0, approach = std::numeric_limits<double>::infinity();
     for (const PushAssignment& push : pushes) {
       if (push.pushed != static_cast<int>(b)) continue;
       const double max_speed = planned.bodies[push.pusher].max_speed;
       const Eigen::VectorXd way = start + push.offset - scene.bodies()[push.pusher].position;
-      if (way.norm() > 0.0) {
-        least.approach =
-            std::max(least.approach, way.norm() / speedAlong(max_speed, way.normalized()));
-      }
+      approach = std::min(
+          approach, way.norm() == 0.0 ? 0.0 : way.norm() / speedAlong(max_speed, way.normalized()));
       const Eigen::VectorXd along = planned.bodies[b].target - start;
       if (along.norm() > 0.0) speed = std::max(speed, speedAlong(max_speed, along.normalized()));
       pushers += 1.0;
     }
+    if (pushers == 0.0) continue;
+    // A body no pusher reaches in time (speed bounds 0) keeps the least-effort phases.
+    if (std::isfinite(approach)) least.approach = std::max(least.approach, approach);
     if (speed > 0.0) {
       least.push = std::max(least.push, (planned.bodies[b].target - start).norm() /
                                             (speed * pushers / (pushers + 1.0)));
@@ -681,6 +683,7 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
     const Eigen::VectorXd end = short_push.end;
     if (end != t.target) plan.short_pushes.push_back(short_push);
     planned.bodies[b].target = end;
+    if (end == scene.bodies()[b].position) continue;  // no push: no direction to push from
     const std::vector<PushAssignment> pushers = placePushers(task, pairs, b, end, busy);
     plan.pushes.insert(plan.pushes.end(), pushers.begin(), pushers.end());
   }

@@ -73,7 +73,8 @@ OcpSolution firstRound(OcpSolver& solver, const TrajectoryGuess& guess,
   OcpSolution warm;
   warm.report = previous->report;
   OcpSolution solution = solver.solve(warm, guess);
-  if (solution.start != OcpStart::kPrevious) outcome.cold_start_reason = "the warm solve failed";
+  outcome.warm_started = solution.start == OcpStart::kPrevious;
+  if (!outcome.warm_started) outcome.cold_start_reason = "the warm solve failed";
   return solution;
 }
 

@@ -267,6 +267,7 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
       if (warm && solution.start != OcpStart::kPrevious) {
         outcome.cold_start_reason = "the warm solve failed";
       }
+      outcome.warm_started = solution.start == OcpStart::kPrevious;
     } else {
       solution = solver.solve(partTrajectory(aimed, part, previous_round, previous_pairs), guess);
       solution.report.history.insert(solution.report.history.begin(),

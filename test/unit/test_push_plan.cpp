@@ -207,6 +207,28 @@ TEST(PushPlan, ATargetOutOfTimeIsPushedAsFarAsTimeAllowsWithinTheSpeedBounds) {
   EXPECT_NEAR(plan.release_time, 2.0, 1e-5);
   for (const Eigen::VectorXd& u : plan.guess.controls)
     EXPECT_LE(u.cwiseAbs().maxCoeff(), 2.0 + 1e-4);
+  // A second pusher that cannot move (speed bound 0) leaves the push to the first.
+  fesd::SceneTask helped = task;
+  helped.bodies[1].target = Eigen::Vector2d(0.8, 0.0);
+  helped.scene.bodies().push_back({"idle", 0.5, Eigen::Vector2d(-3.0, 3.0), true});
+  helped.bodies.push_back(fesd::BodyTask{});
+  helped.bodies.back().max_speed = 0.0;
+  const fesd::PushPlan both = fesd::planPushes(helped, helped.scene.allPairs());
+  ASSERT_EQ(both.pushes.size(), 2u);
+  EXPECT_LT(both.contact_time, both.release_time);
+  EXPECT_LT((both.guess.state(helped.horizon).segment<2>(2) - Eigen::Vector2d(0.8, 0.0)).norm(),
+            1e-6);
+  // A pusher too slow to arrive at all: no push is planned, and it never sits on the puck.
+  fesd::SceneTask slow = task;
+  slow.bodies[0].max_speed = 0.5;
+  const fesd::PushPlan none = fesd::planPushes(slow, slow.scene.allPairs());
+  ASSERT_EQ(none.short_pushes.size(), 1u);
+  EXPECT_EQ(none.short_pushes[0].end, slow.scene.bodies()[1].position);
+  EXPECT_TRUE(none.pushes.empty());
+  for (int k = 0; k <= 20; ++k) {
+    const Eigen::VectorXd x = none.guess.state(slow.horizon * k / 20);
+    EXPECT_GE((x.segment<2>(0) - x.segment<2>(2)).norm(), 1.0 - 1e-9) << "t = " << k;
+  }
   // Out of the workspace, not of time: not time-limited.
   task.bodies[1].workspace_upper = Eigen::Vector2d(0.5, 10.0);
   task.bodies[1].workspace_lower = Eigen::Vector2d(-10.0, -10.0);

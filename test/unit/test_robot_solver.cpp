@@ -97,6 +97,8 @@ TEST(RobotSolver, AReplanWarmStartsFromTheLastPlanWhenItsStructureFits) {
   const fesd::RobotOutcome warm = fesd::solveRobotTask(task, {}, options);
   ASSERT_EQ(warm.status, fesd::SolveStatus::kSuccess) << warm.message;
   EXPECT_EQ(warm.start, fesd::OcpStart::kPrevious);
+  EXPECT_TRUE(warm.warm_started);
+  EXPECT_FALSE(first.warm_started);
   EXPECT_EQ(warm.cold_start_reason, "");
   EXPECT_LT(warm.target_distances[0], 1e-3);
   EXPECT_LT(warm.report.iterations, cold.report.iterations / 2);
@@ -108,6 +110,7 @@ TEST(RobotSolver, AReplanWarmStartsFromTheLastPlanWhenItsStructureFits) {
   const fesd::RobotOutcome refused = fesd::solveRobotTask(longer, {}, options);
   ASSERT_TRUE(fesd::solvedItsNlp(refused.status)) << refused.message;
   EXPECT_EQ(refused.start, fesd::OcpStart::kGuess);
+  EXPECT_FALSE(refused.warm_started);
   EXPECT_EQ(refused.cold_start_reason.rfind("the horizons differ", 0), 0u)
       << refused.cold_start_reason;
   std::printf("arm push replanned: cold %d, warm %d Ipopt iterations; objectives %.8g, %.8g\n",

@@ -62,6 +62,9 @@ struct RobotOutcome {
   PlanStructure structure;                ///< of the last round: what a warm start needs
   /// A warm start was asked for but the solve started cold (or fell back to cold): why.
   std::string cold_start_reason;
+  /// The first round started from `previous` (later lazy-pair rounds start from the round
+  /// before, so `start` alone does not tell).
+  bool warm_started = false;
 };
 
 /// validateRobotTask, decideRobotPairs, planRobotGuess, rounds of OcpSolver solves over the

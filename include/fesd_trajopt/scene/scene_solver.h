@@ -35,6 +35,9 @@ struct SceneOutcome {
   PlanStructure structure;  ///< of the solve (not for simulations)
   /// A warm start was asked for but the solve started cold (or fell back to cold): why.
   std::string cold_start_reason;
+  /// The first round started from `previous` (later lazy-pair rounds start from the round
+  /// before, so `start` alone does not tell).
+  bool warm_started = false;
   std::vector<AccuracyRung> refinements;  ///< solveToAccuracy's rungs, in order
   /// Solves with a growing set of modelled pairs (SceneSolveOptions::lazy_pairs): 1 when the
   /// first set held; 0 for simulations.
