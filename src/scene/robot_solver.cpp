@@ -60,6 +60,31 @@ PlanStructure robotPlanStructure(const RobotTask& task, const std::vector<RobotP
                        discretization);
 }
 
+/// Lazy pairs' first round, of the candidates: the pairs the previous plan ended with when there
+/// is one to warm-start from and all of them are still candidates (so that its NLP can match),
+/// else those the first guess calls for; `why` says which.
+std::vector<bool> firstLazyPairs(const RobotTask& task, const std::vector<RobotPair>& candidates,
+                                 const TrajectoryGuess& guess, const RobotSolveOptions& options,
+                                 std::string& why) {
+  if (options.previous != nullptr) {
+    const std::vector<std::string>& previous = options.previous->structure.modelled_pairs;
+    std::vector<bool> chosen(candidates.size(), false);
+    size_t found = 0;
+    for (size_t k = 0; k < candidates.size(); ++k) {
+      const std::string name = task.scene.pairName(candidates[k]);
+      chosen[k] = std::find(previous.begin(), previous.end(), name) != previous.end();
+      found += chosen[k];
+    }
+    if (found == previous.size()) {
+      why = "modelled in the previous solution (warm start)";
+      return chosen;
+    }
+  }
+  why = "called for by the first guess";
+  return robotPairsTheGuessNeeds(task, candidates, guess, options.pair_margin,
+                                 16 * task.num_intervals);
+}
+
 /// The first round's solve: warm from options.previous when it fits, else from the guess.
 OcpSolution firstRound(OcpSolver& solver, const TrajectoryGuess& guess,
                        const RobotSolveOptions& options, RobotOutcome& outcome) {
@@ -103,14 +128,14 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
   const RobotGuess guess = planRobotGuess(task, candidates, elements);
   outcome.pusher_sphere = guess.pusher_sphere;
   if (options.lazy_pairs) {
-    const std::vector<bool> needed = robotPairsTheGuessNeeds(
-        task, candidates, guess.guess, options.pair_margin, 16 * task.num_intervals);
+    std::string why;
+    const std::vector<bool> needed = firstLazyPairs(task, candidates, guess.guess, options, why);
     size_t k = 0;
     for (RobotPairDecision& decision : outcome.decisions) {
       if (!decision.modelled) continue;
       decision.modelled = needed[k];
       decision.checked = !needed[k];
-      decision.reason = needed[k] ? "called for by the first guess" : "checked on the solution";
+      decision.reason = needed[k] ? why : "checked on the solution";
       ++k;
     }
   }

@@ -1,5 +1,6 @@
 // Robot tasks solved (scene/robot_solver.cpp): a refused task is not solved, joints driven to
-// their targets without contact, a passive joint, a replan's warm start, and the boundary gaps.
+// their targets without contact, a passive joint, a replan's warm start (also with lazy pairs),
+// and the boundary gaps.
 #include <cstdio>
 #include <memory>
 
@@ -116,6 +117,32 @@ TEST(RobotSolver, AReplanWarmStartsFromTheLastPlanWhenItsStructureFits) {
   std::printf("arm push replanned: cold %d, warm %d Ipopt iterations; objectives %.8g, %.8g\n",
               cold.report.iterations, warm.report.iterations, cold.report.objective,
               warm.report.objective);
+}
+
+TEST(RobotSolver, ALazyReplanStartsWithThePairsTheLastPlanEndedWith) {
+  // With lazy pairs the first round models what the guess calls for; a warm start's first round
+  // models the previous plan's pairs instead, so that its NLP matches and the warm start applies.
+  fesd::RobotSolveOptions options;
+  options.ocp.discretization.num_elements = 2;
+  options.lazy_pairs = true;
+  fesd::RobotTask task = fesd::planarArmPushTask(
+      std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf")));
+  const fesd::RobotOutcome first = fesd::solveRobotTask(task, {}, options);
+  ASSERT_TRUE(fesd::solvedItsNlp(first.status)) << first.message;
+  task.bodies[0].target(1) += 0.01;
+  options.previous = &first;
+  const fesd::RobotOutcome warm = fesd::solveRobotTask(task, {}, options);
+  ASSERT_TRUE(fesd::solvedItsNlp(warm.status)) << warm.message;
+  EXPECT_TRUE(warm.warm_started) << warm.cold_start_reason;
+  int from_previous = 0;
+  for (const fesd::RobotPairDecision& decision : warm.decisions) {
+    from_previous += decision.reason == "modelled in the previous solution (warm start)";
+  }
+  EXPECT_EQ(from_previous, static_cast<int>(first.structure.modelled_pairs.size()));
+  std::printf(
+      "lazy arm push replanned: %d pairs from the last plan, %d rounds, %d iterations "
+      "(first plan %d)\n",
+      from_previous, warm.pair_rounds, warm.report.iterations, first.report.iterations);
 }
 
 TEST(RobotSolver, SmallestBoundaryGap) {

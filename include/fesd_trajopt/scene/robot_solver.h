@@ -18,7 +18,8 @@ struct RobotSolveOptions {
   OcpOptions ocp;
   /// Lazy pairs, as for discs: model first the pairs in reach that the first guess calls for
   /// (robotPairsTheGuessNeeds), check the others on the solution's dense path, add those within
-  /// the margin and solve again from that solution until none is. Off by default: on the arm
+  /// the margin and solve again from that solution until none is; a warm start's first round
+  /// models the pairs the previous plan ended with (all still in reach). Off by default: on the arm
   /// push it ended with 2 of 9 pairs in another local optimum (two hand spheres on the disc in
   /// the last interval) that its re-simulation misses by 6e-2, against 3e-5 with all pairs.
   bool lazy_pairs = false;
