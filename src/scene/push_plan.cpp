@@ -514,62 +514,59 @@ double speedAlong(double max_speed, const Eigen::VectorXd& d) {
   return max_speed / d.cwiseAbs().maxCoeff();
 }
 
-/// The shortest approach and push phases the pushers' speed bounds allow for the planned pushes,
-/// by the rule of pushableInTime (each body's nearest pusher straight to its pose, then the body
-/// at k / (k + 1) of its fastest pusher's speed along the push), so that a push it judged in
-/// time keeps a push phase.
-struct PhaseTimes {
+/// The shortest approach and push a body's pushers' speed bounds allow, judged optimistically:
+/// the nearest pusher straight to its pose at full speed, then the body at k / (k + 1) of the
+/// fastest pusher's speed along the push (the projection shares a push between pushers and
+/// pushed: one pusher moves a passive body at half its own speed, k together at k / (k + 1) of
+/// theirs). Infinite when no pusher can move.
+struct PushTimes {
   double approach = 0.0, push = 0.0;
 };
-PhaseTimes leastPhaseTimes(const SceneTask& planned, const std::vector<PushAssignment>& pushes) {
-  const DiscScene& scene = planned.scene;
-  PhaseTimes least;
-  for (size_t b = 0; b < scene.bodies().size(); ++b) {
-    const Eigen::VectorXd start = scene.bodies()[b].position;
-    double speed = 0.0, pushers = 0.0, approach = std::numeric_limits<double>::infinity();
-    for (const PushAssignment& push : pushes) {
-      if (push.pushed != static_cast<int>(b)) continue;
-      const double max_speed = planned.bodies[push.pusher].max_speed;
-      const Eigen::VectorXd way = start + push.offset - scene.bodies()[push.pusher].position;
-      approach = std::min(
-          approach, way.norm() == 0.0 ? 0.0 : way.norm() / speedAlong(max_speed, way.normalized()));
-      const Eigen::VectorXd along = planned.bodies[b].target - start;
-      if (along.norm() > 0.0) speed = std::max(speed, speedAlong(max_speed, along.normalized()));
-      pushers += 1.0;
-    }
-    if (pushers == 0.0) continue;
-    // A body no pusher reaches in time (speed bounds 0) keeps the least-effort phases.
-    if (std::isfinite(approach)) least.approach = std::max(least.approach, approach);
-    if (speed > 0.0) {
-      least.push = std::max(least.push, (planned.bodies[b].target - start).norm() /
-                                            (speed * pushers / (pushers + 1.0)));
-    }
-  }
-  return least;
-}
-
-/// Whether the placed pushers can push their body from start to end within the horizon, judged
-/// optimistically so that only ends clearly out of time are replaced: the nearest pusher at its
-/// pose at full speed, then the body at k / (k + 1) of the fastest pusher's speed along the push
-/// (the projection shares a push between pushers and pushed: one pusher moves a passive body at
-/// half its own speed, k pushing together at k / (k + 1) of theirs).
-bool pushableInTime(const SceneTask& task, const std::vector<PushAssignment>& placed,
-                    const Eigen::VectorXd& start, const Eigen::VectorXd& end) {
+PushTimes shortestPush(const SceneTask& task, const std::vector<PushAssignment>& pushers,
+                       const Eigen::VectorXd& start, const Eigen::VectorXd& end) {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
   const double length = (end - start).norm();
-  if (length == 0.0) return true;
-  if (placed.empty()) return false;
-  const Eigen::VectorXd direction = (end - start) / length;
-  double approach = std::numeric_limits<double>::infinity(), speed = 0.0;
-  for (const PushAssignment& push : placed) {
+  PushTimes times{kInfinity, length == 0.0 ? 0.0 : kInfinity};
+  double speed = 0.0;
+  for (const PushAssignment& push : pushers) {
     const double max_speed = task.bodies[push.pusher].max_speed;
     const Eigen::VectorXd way = start + push.offset - task.scene.bodies()[push.pusher].position;
     const double distance = way.norm();
-    approach = std::min(approach,
-                        distance == 0.0 ? 0.0 : distance / speedAlong(max_speed, way / distance));
-    speed = std::max(speed, speedAlong(max_speed, direction));
+    times.approach = std::min(
+        times.approach, distance == 0.0 ? 0.0 : distance / speedAlong(max_speed, way / distance));
+    if (length > 0.0) speed = std::max(speed, speedAlong(max_speed, (end - start) / length));
   }
-  const double k = static_cast<double>(placed.size());
-  return approach + length / (speed * k / (k + 1.0)) <= task.horizon;
+  const double k = static_cast<double>(pushers.size());
+  if (speed > 0.0) times.push = length / (speed * k / (k + 1.0));
+  return times;
+}
+
+/// Whether the placed pushers can push their body from start to end within the horizon
+/// (shortestPush), so that only ends clearly out of time are replaced.
+bool pushableInTime(const SceneTask& task, const std::vector<PushAssignment>& placed,
+                    const Eigen::VectorXd& start, const Eigen::VectorXd& end) {
+  if (start == end) return true;
+  const PushTimes times = shortestPush(task, placed, start, end);
+  return times.approach + times.push <= task.horizon;
+}
+
+/// The shortest approach and push phases of all planned pushes (shortestPush per pushed body),
+/// so that a push judged in time keeps a push phase; a body no pusher can reach leaves the
+/// least-effort phases as they are.
+PushTimes leastPhaseTimes(const SceneTask& planned, const std::vector<PushAssignment>& pushes) {
+  PushTimes least;
+  for (size_t b = 0; b < planned.scene.bodies().size(); ++b) {
+    std::vector<PushAssignment> own;
+    for (const PushAssignment& push : pushes) {
+      if (push.pushed == static_cast<int>(b)) own.push_back(push);
+    }
+    if (own.empty()) continue;
+    const PushTimes times =
+        shortestPush(planned, own, planned.scene.bodies()[b].position, planned.bodies[b].target);
+    if (std::isfinite(times.approach)) least.approach = std::max(least.approach, times.approach);
+    if (std::isfinite(times.push)) least.push = std::max(least.push, times.push);
+  }
+  return least;
 }
 
 /// Whether a body ends at p clear of the obstacles and walls; with `path_from`, pushed straight
@@ -623,17 +620,23 @@ PushPlan::ShortPush pushableEnd(const SceneTask& task, const std::vector<Contact
   const DiscScene& scene = task.scene;
   const Eigen::VectorXd start = scene.bodies()[pushed].position;
   const Eigen::VectorXd target = task.bodies[pushed].target;
-  const auto placeable = [&](const Eigen::VectorXd& end, bool in_time) {
+  // Whether pushers can be placed to push the body to `end`, and whether also in time.
+  struct Judgement {
+    bool placeable = false, in_time = false;
+  };
+  const auto judge = [&](const Eigen::VectorXd& end) {
     std::vector<bool> trial = busy;
     const std::vector<PushAssignment> placed = placePushers(task, pairs, pushed, end, trial);
-    return unpushableFraction(placed, end - start) < kUnpushableFraction &&
-           (!in_time || pushableInTime(task, placed, start, end));
+    Judgement judgement;
+    judgement.placeable = unpushableFraction(placed, end - start) < kUnpushableFraction;
+    judgement.in_time = judgement.placeable && pushableInTime(task, placed, start, end);
+    return judgement;
   };
-  const auto pushable = [&](const Eigen::VectorXd& end) { return placeable(end, true); };
+  const auto pushable = [&](const Eigen::VectorXd& end) { return judge(end).in_time; };
   // The target's own path may go around obstacles (besidePath); a replacement's may not.
-  const bool placeable_target = clearEnd(scene, pushed, target) && placeable(target, false);
-  if (placeable_target && pushable(target)) return {pushed, target};
-  PushPlan::ShortPush short_push{pushed, start, placeable_target};
+  const Judgement at_target = clearEnd(scene, pushed, target) ? judge(target) : Judgement{};
+  if (at_target.in_time) return {pushed, target};
+  PushPlan::ShortPush short_push{pushed, start, at_target.placeable};
   if (short_push.time_limited) {  // as far as time allows on the way to the target
     double reachable = 0.0, unreachable = 1.0;
     for (int halving = 0; halving < 20; ++halving) {
@@ -727,7 +730,7 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
     plan.contact_time = task.horizon * std::sqrt(approach) / total;
     plan.release_time = task.horizon * (std::sqrt(approach) + std::sqrt(push)) / total;
     // No phase shorter than the speed bounds allow (a push to the edge of what time allows).
-    const PhaseTimes least = leastPhaseTimes(planned, plan.pushes);
+    const PushTimes least = leastPhaseTimes(planned, plan.pushes);
     plan.contact_time = std::min(std::max(plan.contact_time, least.approach), task.horizon);
     plan.release_time =
         std::min(std::max(plan.release_time, plan.contact_time + least.push), task.horizon);

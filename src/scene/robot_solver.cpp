@@ -67,15 +67,11 @@ std::vector<bool> firstLazyPairs(const RobotTask& task, const std::vector<RobotP
                                  const TrajectoryGuess& guess, const RobotSolveOptions& options,
                                  std::string& why) {
   if (options.previous != nullptr) {
-    const std::vector<std::string>& previous = options.previous->structure.modelled_pairs;
-    std::vector<bool> chosen(candidates.size(), false);
-    size_t found = 0;
-    for (size_t k = 0; k < candidates.size(); ++k) {
-      const std::string name = task.scene.pairName(candidates[k]);
-      chosen[k] = std::find(previous.begin(), previous.end(), name) != previous.end();
-      found += chosen[k];
-    }
-    if (found == previous.size()) {
+    std::vector<std::string> names;
+    for (const RobotPair& pair : candidates) names.push_back(task.scene.pairName(pair));
+    std::vector<bool> chosen =
+        previousPairsAmong(names, options.previous->structure.modelled_pairs);
+    if (chosen.size() == candidates.size()) {
       why = "modelled in the previous solution (warm start)";
       return chosen;
     }

@@ -61,18 +61,15 @@ void chooseFirstPairs(const SceneTask& task, const std::vector<ContactPair>& can
                       const TrajectoryGuess& guess, const SceneSolveOptions& options,
                       SceneOutcome& outcome) {
   if (!options.lazy_pairs) return;
-  std::vector<bool> chosen(candidates.size(), false);
-  std::vector<std::string> reasons(candidates.size());
-  const std::vector<std::string>* previous =
-      options.previous ? &options.previous->structure.modelled_pairs : nullptr;
-  int previous_found = 0;
-  for (size_t k = 0; previous && k < candidates.size(); ++k) {
-    const std::string name = task.scene.pairName(candidates[k]);
-    chosen[k] = std::find(previous->begin(), previous->end(), name) != previous->end();
-    reasons[k] = "modelled in the previous solution (warm start)";
-    previous_found += chosen[k];
+  std::vector<bool> chosen;
+  std::vector<std::string> reasons(candidates.size(),
+                                   "modelled in the previous solution (warm start)");
+  if (options.previous) {
+    std::vector<std::string> names;
+    for (const ContactPair& pair : candidates) names.push_back(task.scene.pairName(pair));
+    chosen = previousPairsAmong(names, options.previous->structure.modelled_pairs);
   }
-  if (!previous || previous_found != static_cast<int>(previous->size())) {
+  if (chosen.size() != candidates.size()) {
     const int samples = 16 * task.num_intervals;
     const PairSelection selection =
         pairsTheGuessNeeds(task, candidates, guess, options.pair_margin, samples);

@@ -1,5 +1,6 @@
 #include "fesd_trajopt/scene/warm_start.h"
 
+#include <algorithm>
 #include <sstream>
 #include <utility>
 
@@ -83,6 +84,17 @@ std::string warmStartRefusal(bool solved, int point_size, const NlpSizes& previo
     return difference("the NLP sizes", sizes(previous_sizes), sizes(now_sizes));
   }
   return "";
+}
+
+std::vector<bool> previousPairsAmong(const std::vector<std::string>& candidates,
+                                     const std::vector<std::string>& previous) {
+  std::vector<bool> chosen(candidates.size(), false);
+  size_t found = 0;
+  for (size_t k = 0; k < candidates.size(); ++k) {
+    chosen[k] = std::find(previous.begin(), previous.end(), candidates[k]) != previous.end();
+    found += chosen[k];
+  }
+  return found == previous.size() ? chosen : std::vector<bool>{};
 }
 
 void startOnPreviousRung(const PlanStructure& previous, DiscretizationOptions& grid) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "fesd_trajopt/scene/warm_start.h"
 
@@ -76,6 +77,14 @@ TEST(WarmStart, OnlyASolutionOfItsNlpWarmStarts) {
   // A point of another NLP (e.g. an interrupted fixed-grid stage) is no start either.
   EXPECT_EQ(fesd::warmStartRefusal(true, 900, kSizes, structure(), kSizes, structure()),
             "no previous solution");
+}
+
+TEST(WarmStart, ALazyFirstRoundTakesThePreviousPairsOnlyWhenAllAreCandidates) {
+  const std::vector<std::string> candidates{"a/b", "a/c", "b/c"};
+  EXPECT_EQ(fesd::previousPairsAmong(candidates, {"b/c", "a/b"}),
+            (std::vector<bool>{true, false, true}));
+  EXPECT_EQ(fesd::previousPairsAmong(candidates, {}), (std::vector<bool>{false, false, false}));
+  EXPECT_TRUE(fesd::previousPairsAmong(candidates, {"a/b", "c/d"}).empty());  // c/d out of reach
 }
 
 TEST(WarmStart, ReplanningStartsOnThePreviousPlansRungWhenItIsFiner) {

@@ -44,6 +44,12 @@ std::string warmStartRefusal(bool solved, int point_size, const NlpSizes& previo
                              const PlanStructure& previous, const NlpSizes& now_sizes,
                              const PlanStructure& now);
 
+/// Which of the candidate pairs (names) a warm start's first round models with lazy pairs: those
+/// the previous plan ended with (`previous`), when every one of them is still a candidate, so
+/// that the NLPs can match; empty when one is not.
+std::vector<bool> previousPairsAmong(const std::vector<std::string>& candidates,
+                                     const std::vector<std::string>& previous);
+
 /// Replanning on an accuracy ladder starts on the rung the last plan needed, since its warm
 /// start fits only there: `grid` takes the previous plan's stages and elements when that plan
 /// (a verified solution) used the same method on a grid at least as fine.
