@@ -152,7 +152,7 @@ class RobotNodeTest(unittest.TestCase):
         self.assertEqual(response.status == Solution.SUCCESS, best <= 1e-6)
         self.assertIn("accuracy target 1e-06", response.message)
 
-    def test_a_puck_in_the_robots_urdf_is_a_free_body_of_its_scene(self):
+    def test_pucks_in_the_robots_urdf_are_free_bodies_of_its_scene(self):
         # The arm push with the disc given in the URDF, on a floating joint of the base: the
         # request names it to give its target, as a body of a disc scene's URDF.
         urdf = rospy.get_param(ARM).replace("</robot>", """
@@ -170,13 +170,31 @@ class RobotNodeTest(unittest.TestCase):
         self.assertAlmostEqual(puck.positions[0].x, 0.6, places=12)
         self.assertLess(puck.target_distance, 1e-3)
         self.assertLess(response.solution.verification_error, 1e-3)
-        # A free link that one body cannot stand for is refused by name.
+        # Two spheres side by side: one body at their mean, pushed sphere by sphere.
         two_spheres = urdf.replace("</collision>\n          </link>", """</collision>
           <collision><origin xyz="0.1 0 0"/><geometry><sphere radius="0.05"/></geometry>
           </collision></link>""")
         request.urdf = two_spheres
-        self.assert_invalid(request, "free link 'puck' (joint 'puck_joint') must carry exactly "
-                                     "one collision sphere")
+        request.bodies[0].target = Point(0.65, 0.2, 0.0)
+        response = self.solve(request)
+        print("two-sphere puck in the URDF: status %d, %d Ipopt iterations, %.2e from its target"
+              % (response.status, response.solution.statistics.ipopt_iterations,
+                 response.solution.bodies[0].target_distance))
+        self.assertEqual(response.status, Solution.SUCCESS, response.message)
+        puck = response.solution.bodies[0]
+        self.assertAlmostEqual(puck.positions[0].x, 0.65, places=12)
+        self.assertLess(puck.target_distance, 1e-3)
+        self.assertTrue(any(e.first.startswith("puck/sphere_") or
+                            e.second.startswith("puck/sphere_")
+                            for e in response.solution.switches), response.solution.switches)
+        # Its size comes from its spheres; a free link without one is refused by name.
+        request.bodies[0].radius = 0.1
+        self.assert_invalid(request, "body 'puck' carries 2 collision spheres in the URDF")
+        request.bodies[0].radius = 0.0
+        request.urdf = urdf.replace('<link name="puck"><collision><geometry><sphere radius="0.05"/>',
+                                    '<link name="puck"><collision><geometry><box size="1 1 1"/>')
+        self.assert_invalid(request, "free link 'puck' (joint 'puck_joint') has no collision "
+                                     "sphere")
 
     def test_a_replan_warm_starts_from_the_last_robot_plan_or_says_why_not(self):
         first = self.solve(arm_push_request())

@@ -79,8 +79,15 @@ class ModelBuilder {
   void addLink(const PendingLink& pending) {
     const int index = static_cast<int>(model_.links.size());
     model_.links.push_back({pending.link->name, pending.joint, pending.offset});
-    const auto& collisions = pending.link->collision_array;
-    const std::string prefix = pending.link->name + "/";
+    addSpheres(*pending.link, index, pending.offset, pending.zero_pose, model_.spheres);
+  }
+
+  /// Every `<collision>` sphere of a link (in planar models also every cylinder normal to the
+  /// plane at q = 0) into `spheres`, tagged with `link`; other shapes go to ignored_shapes.
+  void addSpheres(const urdf::Link& link, int index, const Eigen::Isometry3d& offset,
+                  const Eigen::Isometry3d& zero_pose, std::vector<KinematicSphere>& spheres) {
+    const auto& collisions = link.collision_array;
+    const std::string prefix = link.name + "/";
     for (std::size_t k = 0; k < collisions.size(); ++k) {
       const urdf::Collision& collision = *collisions[k];
       if (!collision.geometry) continue;
@@ -89,7 +96,7 @@ class ModelBuilder {
       if (collision.geometry->type == urdf::Geometry::SPHERE) {
         radius = static_cast<const urdf::Sphere&>(*collision.geometry).radius;
       } else if (options_.planar && collision.geometry->type == urdf::Geometry::CYLINDER &&
-                 std::abs((pending.zero_pose * local).linear()(2, 2)) > 1.0 - 1e-9) {
+                 std::abs((zero_pose * local).linear()(2, 2)) > 1.0 - 1e-9) {
         radius = static_cast<const urdf::Cylinder&>(*collision.geometry).radius;
       }
       if (!(radius > 0.0)) {
@@ -97,14 +104,14 @@ class ModelBuilder {
                                         shapeName(collision.geometry->type) + ")");
         continue;
       }
-      if (static_cast<int>(model_.spheres.size()) >= options_.max_spheres) {
+      if (++sphere_count_ > options_.max_spheres) {
         error_ = "the URDF has more than " + std::to_string(options_.max_spheres) +
                  " collision spheres (limits/max_spheres)";
         return;
       }
       const Eigen::Vector3d centre = local.translation();
-      model_.spheres.push_back(
-          {prefix + "sphere_" + std::to_string(k), index, centre, pending.offset * centre, radius});
+      spheres.push_back(
+          {prefix + "sphere_" + std::to_string(k), index, centre, offset * centre, radius});
     }
   }
 
@@ -121,8 +128,16 @@ class ModelBuilder {
         return;
       case urdf::Joint::PLANAR:
       case urdf::Joint::FLOATING:
-        model_.free_links.push_back(
-            {child->name, joint.name, parent.link->name, joint.type == urdf::Joint::PLANAR});
+        model_.free_links.push_back({child->name,
+                                     joint.name,
+                                     parent.link->name,
+                                     joint.type == urdf::Joint::PLANAR,
+                                     parent.offset * origin,
+                                     Eigen::Vector3d(joint.axis.x, joint.axis.y, joint.axis.z),
+                                     !child->child_joints.empty(),
+                                     {}});
+        addSpheres(*child, -1, parent.offset * origin, parent.zero_pose * origin,
+                   model_.free_links.back().spheres);
         return;
       case urdf::Joint::REVOLUTE:
       case urdf::Joint::CONTINUOUS:
@@ -169,6 +184,7 @@ class ModelBuilder {
   const urdf::ModelInterface& urdf_;
   const KinematicModelOptions& options_;
   KinematicModel model_;
+  int sphere_count_ = 0;  ///< the robot's and its free links'
   std::string error_;
 };
 

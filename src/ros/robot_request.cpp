@@ -112,6 +112,17 @@ RobotTaskBuild buildRobotTask(const NodeConfig& config, const SceneFields& scene
   objects.scene.bodies() = read.free_bodies;  // the URDF's pucks, configured like its discs
   build.error = applySceneFields(config, scene, objects);
   if (!build.error.empty()) return build;
+  for (size_t b = 0; b < read.free_body_spheres.size(); ++b) {
+    const std::string& link = read.free_bodies[b].name;
+    for (const fesd_trajopt::BodySpec& spec : scene.bodies) {
+      if (spec.name == link && spec.radius > 0.0 && !read.free_body_spheres[b].empty()) {
+        build.error = "body '" + link + "' carries " +
+                      std::to_string(read.free_body_spheres[b].size()) +
+                      " collision spheres in the URDF: its size comes from them, not a radius";
+        return build;
+      }
+    }
+  }
 
   const int joints = read.robot->numCoordinates();
   Eigen::VectorXd start = Eigen::VectorXd::Zero(joints);
@@ -127,7 +138,7 @@ RobotTaskBuild buildRobotTask(const NodeConfig& config, const SceneFields& scene
     build.error = applyJointSpec(spec, joint_tasks[j], start(j));
     if (!build.error.empty()) return build;
   }
-  fesd::RobotScene robot_scene(read.robot, start, objects.scene);
+  fesd::RobotScene robot_scene(read.robot, start, objects.scene, read.free_body_spheres);
   robot_scene.self_collision = robot.self_collision;
   if (!robot.srdf_param.empty()) {
     std::string srdf;

@@ -147,23 +147,37 @@ visualization_msgs::MarkerArray robotMarkers(const fesd::RobotTask& task,
   // After sceneMarkers' ids, so that no marker replaces another.
   int id = static_cast<int>(markers.markers.size());
   fesd::KinematicData data;
+  auto sphere = [&](const std::string& ns, const geometry_msgs::Point& centre, double radius,
+                    const std_msgs::ColorRGBA& color) {
+    visualization_msgs::Marker m;
+    m.header.frame_id = frame_id;
+    m.header.stamp = solution.header.stamp;
+    m.ns = ns;
+    m.id = id++;
+    m.type = visualization_msgs::Marker::SPHERE;
+    m.action = visualization_msgs::Marker::ADD;
+    m.pose.orientation.w = 1.0;
+    m.pose.position = centre;
+    m.scale.x = m.scale.y = m.scale.z = 2.0 * radius;
+    m.color = color;
+    markers.markers.push_back(m);
+  };
   auto spheres = [&](const std::string& ns, size_t k, double alpha) {
     const Eigen::VectorXd q =
         Eigen::Map<const Eigen::VectorXd>(points[k].positions.data(), points[k].positions.size());
     fesd::forwardKinematics(robot, q, data);
     for (size_t s = 0; s < robot.spheres.size(); ++s) {
-      visualization_msgs::Marker m;
-      m.header.frame_id = frame_id;
-      m.header.stamp = solution.header.stamp;
-      m.ns = ns;
-      m.id = id++;
-      m.type = visualization_msgs::Marker::SPHERE;
-      m.action = visualization_msgs::Marker::ADD;
-      m.pose.orientation.w = 1.0;
-      m.pose.position = point(data.sphere_centres[s]);
-      m.scale.x = m.scale.y = m.scale.z = 2.0 * robot.spheres[s].radius;
-      m.color = bodyColor(true, alpha);
-      markers.markers.push_back(m);
+      sphere(ns, point(data.sphere_centres[s]), robot.spheres[s].radius, bodyColor(true, alpha));
+    }
+    // A free body with several spheres: each where the body is at that boundary.
+    const auto& free_spheres = task.scene.freeBodySpheres();
+    for (size_t b = 0; b < free_spheres.size() && b < solution.bodies.size(); ++b) {
+      const auto& positions = solution.bodies[b].positions;
+      if (k >= positions.size()) continue;
+      const Eigen::Vector3d body(positions[k].x, positions[k].y, positions[k].z);
+      for (const fesd::FreeBodySphere& s : free_spheres[b]) {
+        sphere(ns, point(body + s.offset), s.radius, bodyColor(false, alpha));
+      }
     }
   };
   spheres("robot_start", 0, 0.9);

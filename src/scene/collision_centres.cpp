@@ -29,7 +29,7 @@ Eigen::Vector3d CentreEvaluator::position(const CollisionCentre& centre) const {
     return inPlane(data_.sphere_centres[centre.index]);
   }
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (int d = 0; d < dimension_; ++d) p(d) = free_state_[centre.index + d];
+  for (int d = 0; d < dimension_; ++d) p(d) = free_state_[centre.index + d] + centre.offset(d);
   return p;
 }
 

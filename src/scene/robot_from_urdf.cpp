@@ -3,56 +3,61 @@
 #include <algorithm>
 #include <cmath>
 
-#include <urdf_parser/urdf_parser.h>
-
 #include "fesd_trajopt/kinematics/planarity.h"
-#include "fesd_trajopt/kinematics/urdf_pose.h"
-#include "fesd_trajopt/scene/urdf_scene.h"
 
 namespace fesd {
 namespace {
 
-/// The free links of `robot` as bodies (RobotForScene::free_bodies), or why one cannot be.
-std::string freeLinkBodies(const std::string& urdf_xml, const KinematicModel& robot, int dimension,
-                           std::vector<SceneBody>& bodies) {
-  if (robot.free_links.empty()) return "";
-  // Parsed before by buildKinematicModel, within its limits: these reads cannot fail.
-  const urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(urdf_xml);
-  const UrdfScene scene = sceneFromUrdf(urdf_xml, dimension == 2);
+/// A free link as a passive free body (RobotForScene::free_bodies), or why it cannot be one.
+std::string freeLinkBody(const KinematicModel& robot, const FreeLink& free, int dimension,
+                         SceneBody& body, std::vector<FreeBodySphere>& spheres) {
+  const std::string who = "free link '" + free.link + "' (joint '" + free.joint + "')";
+  const int parent = robot.linkIndex(free.parent_link);
+  if (parent < 0 || robot.links[parent].joint >= 0) {
+    return who + " hangs from a moving link: only free links of the world are modelled";
+  }
+  if (free.planar && dimension != 2) {
+    return who + " is planar in a spatial scene: its plane is not modelled";
+  }
+  const Eigen::Isometry3d world = robot.links[parent].offset * free.pose;
+  if (free.planar &&
+      std::abs(std::abs((world.linear() * free.axis).normalized().z()) - 1.0) > 1e-9) {
+    return who + " slides in a plane other than the scene's (x, y): its normal must be z";
+  }
+  if (free.has_children) return who + " has links below it: a free link is modelled as one body";
+  if (free.spheres.empty()) {
+    return who + " has no collision sphere" +
+           (dimension == 2 ? " (or cylinder normal to the plane)" : "") +
+           ": a free link needs one to be a body";
+  }
+  // The body's position is the mean of its spheres' centres (its only sphere's centre).
+  std::vector<Eigen::VectorXd> centres;
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(dimension);
+  for (const KinematicSphere& sphere : free.spheres) {
+    centres.push_back((robot.links[parent].offset * sphere.joint_centre).head(dimension));
+    mean += centres.back() / static_cast<double>(free.spheres.size());
+  }
+  body = {free.link, 0.0, mean, false};
+  spheres.clear();
+  for (size_t s = 0; s < free.spheres.size(); ++s) {
+    const Eigen::VectorXd offset = centres[s] - mean;
+    body.radius = std::max(body.radius, offset.norm() + free.spheres[s].radius);
+    if (free.spheres.size() == 1) break;  // the body itself is its sphere
+    Eigen::Vector3d padded = Eigen::Vector3d::Zero();
+    padded.head(dimension) = offset;
+    spheres.push_back({free.spheres[s].name, padded, free.spheres[s].radius});
+  }
+  return "";
+}
+
+std::string freeLinkBodies(const KinematicModel& robot, int dimension, RobotForScene& result) {
   for (const FreeLink& free : robot.free_links) {
-    const std::string who = "free link '" + free.link + "' (joint '" + free.joint + "')";
-    const int parent = robot.linkIndex(free.parent_link);
-    if (parent < 0 || robot.links[parent].joint >= 0) {
-      return who + " hangs from a moving link: only free links of the world are modelled";
-    }
-    if (free.planar && dimension != 2) {
-      return who + " is planar in a spatial scene: its plane is not modelled";
-    }
-    const urdf::JointConstSharedPtr joint = urdf->getJoint(free.joint);
-    if (free.planar) {
-      const Eigen::Vector3d normal =
-          (robot.links[parent].offset * isometryFromUrdf(joint->parent_to_joint_origin_transform))
-              .linear() *
-          Eigen::Vector3d(joint->axis.x, joint->axis.y, joint->axis.z);
-      if (std::abs(std::abs(normal.normalized().z()) - 1.0) > 1e-9) {
-        return who + " slides in a plane other than the scene's (x, y): its normal must be z";
-      }
-    }
-    const urdf::LinkConstSharedPtr link = urdf->getLink(free.link);
-    if (!link->child_links.empty()) {
-      return who + " has links below it: a free link is modelled as one body";
-    }
-    const auto body = std::find_if(scene.scene.bodies().begin(), scene.scene.bodies().end(),
-                                   [&](const SceneBody& b) { return b.name == free.link; });
-    if (link->collision_array.size() != 1 || body == scene.scene.bodies().end()) {
-      return who + " must carry exactly one collision sphere" +
-             (dimension == 2 ? " (or cylinder normal to the plane)" : "") + ", it has " +
-             std::to_string(link->collision_array.size()) + " collision element(s)" +
-             (body == scene.scene.bodies().end() && link->collision_array.size() == 1
-                  ? " of another shape"
-                  : "");
-    }
-    bodies.push_back(*body);
+    SceneBody body;
+    std::vector<FreeBodySphere> spheres;
+    const std::string error = freeLinkBody(robot, free, dimension, body, spheres);
+    if (!error.empty()) return error;
+    result.free_bodies.push_back(body);
+    result.free_body_spheres.push_back(spheres);
   }
   return "";
 }
@@ -80,7 +85,7 @@ RobotForScene robotForScene(const std::string& urdf_xml, PlanarChoice choice,
   result.dimension = planar ? 2 : 3;
   if (!planar) {
     result.robot = std::make_shared<const KinematicModel>(std::move(spatial.model));
-    result.error = freeLinkBodies(urdf_xml, *result.robot, 3, result.free_bodies);
+    result.error = freeLinkBodies(*result.robot, 3, result);
     return result;
   }
   options.planar = true;  // read again: cylinders normal to the plane become discs
@@ -90,7 +95,7 @@ RobotForScene robotForScene(const std::string& urdf_xml, PlanarChoice choice,
     return result;
   }
   result.robot = std::make_shared<const KinematicModel>(std::move(flat.model));
-  result.error = freeLinkBodies(urdf_xml, *result.robot, 2, result.free_bodies);
+  result.error = freeLinkBodies(*result.robot, 2, result);
   return result;
 }
 

@@ -50,6 +50,28 @@ PushPlan proxyPlan(const RobotTask& task, int sphere, int body, const Eigen::Vec
   return planPushes(proxy, proxy.scene.allPairs());
 }
 
+/// The collision body of the pushed body that the proxy's push touches: of a body with several
+/// spheres, the one whose surface is nearest the pushing disc at the contact time.
+int touchedCollisionBody(const RobotScene& scene, int body, const PushPlan& plan) {
+  const std::vector<int> candidates = scene.freeBodyCollisionBodies(body);
+  if (candidates.size() == 1) return candidates.front();
+  const int dim = scene.dimension();
+  const Eigen::VectorXd at = plan.guess.state(plan.contact_time);
+  int nearest = candidates.front();
+  double nearest_gap = std::numeric_limits<double>::infinity();
+  for (int c : candidates) {
+    const CollisionBody& sphere = scene.collisionBodies()[c];
+    const double gap =
+        (at.segment(dim, dim) + sphere.centre.offset.head(dim) - at.head(dim)).norm() -
+        sphere.radius;
+    if (gap < nearest_gap) {
+      nearest = c;
+      nearest_gap = gap;
+    }
+  }
+  return nearest;
+}
+
 /// Linear interpolation of boundary values at times horizon * k / (n - 1).
 Eigen::VectorXd interpolate(const std::vector<Eigen::VectorXd>& values, double horizon, double t) {
   const int n = static_cast<int>(values.size());
@@ -132,7 +154,8 @@ RobotGuess planRobotGuess(const RobotTask& task, const std::vector<RobotPair>& p
     const int first = scene.bodyStateIndex(body);
     const auto plan_state = plan.guess.state;
     const auto plan_multipliers = plan.guess.multipliers;
-    const RobotPair contact{body, RobotPair::Kind::kBody, scene.sphereBody(result.pusher_sphere)};
+    const RobotPair contact{touchedCollisionBody(scene, body, plan), RobotPair::Kind::kBody,
+                            scene.sphereBody(result.pusher_sphere)};
     const auto found = std::find(pairs.begin(), pairs.end(), contact);
     const int contact_index = found == pairs.end() ? -1 : static_cast<int>(found - pairs.begin());
     const int num_pairs = static_cast<int>(pairs.size());

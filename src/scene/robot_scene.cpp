@@ -7,21 +7,45 @@
 namespace fesd {
 
 RobotScene::RobotScene(std::shared_ptr<const KinematicModel> robot, Eigen::VectorXd q0,
-                       DiscScene discs)
-    : robot_(std::move(robot)), q0_(std::move(q0)), discs_(std::move(discs)) {
+                       DiscScene discs, std::vector<std::vector<FreeBodySphere>> free_body_spheres)
+    : robot_(std::move(robot)),
+      q0_(std::move(q0)),
+      discs_(std::move(discs)),
+      free_body_spheres_(std::move(free_body_spheres)) {
   if (!robot_ || q0_.size() != robot_->numCoordinates()) {
     throw std::invalid_argument("RobotScene: q0 needs one value per robot coordinate");
   }
-  for (int b = 0; b < static_cast<int>(discs_.bodies().size()); ++b) {
-    const SceneBody& body = discs_.bodies()[b];
-    collision_bodies_.push_back(
-        {body.name, body.radius, {CollisionCentre::Source::kFreeBody, bodyStateIndex(b)}});
+  const int bodies = static_cast<int>(discs_.bodies().size());
+  if (static_cast<int>(free_body_spheres_.size()) > bodies) {
+    throw std::invalid_argument("RobotScene: spheres given for more free bodies than there are");
   }
+  free_body_spheres_.resize(bodies);
+  for (int b = 0; b < bodies; ++b) {
+    const SceneBody& body = discs_.bodies()[b];
+    const CollisionCentre centre{CollisionCentre::Source::kFreeBody, bodyStateIndex(b)};
+    if (free_body_spheres_[b].empty()) {
+      collision_bodies_.push_back({body.name, body.radius, centre, -1, b});
+    }
+    for (const FreeBodySphere& sphere : free_body_spheres_[b]) {
+      CollisionCentre moved = centre;
+      moved.offset = sphere.offset;
+      collision_bodies_.push_back({sphere.name, sphere.radius, moved, -1, b});
+    }
+  }
+  free_collision_bodies_ = static_cast<int>(collision_bodies_.size());
   for (int s = 0; s < static_cast<int>(robot_->spheres.size()); ++s) {
     const KinematicSphere& sphere = robot_->spheres[s];
     collision_bodies_.push_back(
         {sphere.name, sphere.radius, {CollisionCentre::Source::kRobotSphere, s}, s});
   }
+}
+
+std::vector<int> RobotScene::freeBodyCollisionBodies(int body) const {
+  std::vector<int> found;
+  for (int i = 0; i < free_collision_bodies_; ++i) {
+    if (collision_bodies_[i].free_body == body) found.push_back(i);
+  }
+  return found;
 }
 
 Eigen::VectorXd RobotScene::initialState() const {
@@ -46,7 +70,6 @@ bool RobotScene::linksMayCollide(int sphere_a, int sphere_b) const {
 
 std::vector<RobotPair> RobotScene::allPairs() const {
   std::vector<RobotPair> pairs;
-  const int bodies = static_cast<int>(discs_.bodies().size());
   const int all = static_cast<int>(collision_bodies_.size());
   const int obstacles = static_cast<int>(discs_.obstacles().size());
   const int walls = static_cast<int>(discs_.walls().size());
@@ -57,7 +80,8 @@ std::vector<RobotPair> RobotScene::allPairs() const {
     const bool moves = sphere < 0 || robot_->links[robot_->spheres[sphere].link].joint >= 0;
     for (int j = i + 1; j < all; ++j) {
       const int other = collision_bodies_[j].sphere;
-      if (j >= bodies && sphere >= 0) {
+      if (other < 0 && collision_bodies_[j].free_body == collision_bodies_[i].free_body) continue;
+      if (other >= 0 && sphere >= 0) {
         if (!self_collision || !linksMayCollide(sphere, other)) continue;
         const RobotPair pair{i, RobotPair::Kind::kBody, j};
         if (pairGap(pair, x0) < 0.0) continue;  // overlapping at the start: meant to

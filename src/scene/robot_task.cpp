@@ -149,7 +149,7 @@ std::vector<double> collisionReach(const RobotTask& task) {
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (bodies[i].sphere >= 0) {
       reach[i] = sphereReachBound(scene.robot(), bodies[i].sphere, joint_speeds, task.horizon);
-    } else if (scene.discs().bodies()[i].actuated) {
+    } else if (scene.discs().bodies()[bodies[i].free_body].actuated) {
       reach[i] = travel;
     }
   }

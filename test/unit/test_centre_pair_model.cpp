@@ -16,7 +16,8 @@ using fesd::CentrePair;
 using fesd::CollisionCentre;
 
 /// A robot (q first) and two free bodies (the first actuated) with a pair of every kind: sphere
-/// and body, sphere and sphere, sphere and point, sphere and wall, body and body, body and wall.
+/// and body, sphere and sphere, sphere and point, sphere and wall, body and body, body and wall,
+/// a body's offset sphere and a robot sphere.
 fesd::CentrePairSystem mixedSystem(const std::string& robot_file, int dimension) {
   fesd::CentrePairSystem system;
   system.robot =
@@ -32,6 +33,8 @@ fesd::CentrePairSystem mixedSystem(const std::string& robot_file, int dimension)
   const CollisionCentre body1{CollisionCentre::Source::kFreeBody, nq + dimension};
   const CollisionCentre tip{CollisionCentre::Source::kRobotSphere, spheres - 1};
   const CollisionCentre middle{CollisionCentre::Source::kRobotSphere, spheres / 2};
+  const CollisionCentre body0_sphere{CollisionCentre::Source::kFreeBody, nq,
+                                     Eigen::Vector3d(0.1, -0.2, dimension == 3 ? 0.05 : 0.0)};
   const Eigen::Vector3d normal =
       Eigen::Vector3d(0.3, -0.5, dimension == 3 ? 0.8 : 0.0).normalized();
   system.pairs = {
@@ -41,6 +44,7 @@ fesd::CentrePairSystem mixedSystem(const std::string& robot_file, int dimension)
       {CentrePair::Kind::kWall, tip, {}, normal, 0.1},
       {CentrePair::Kind::kCentre, body0, body1, Eigen::Vector3d::Zero(), 0.04},
       {CentrePair::Kind::kWall, body1, {}, normal, -0.2},
+      {CentrePair::Kind::kCentre, body0_sphere, tip, Eigen::Vector3d::Zero(), 0.05},
   };
   system.constraint_scales = Eigen::VectorXd::Ones(system.pairs.size());
   return system;
@@ -51,7 +55,7 @@ class CentrePairDerivatives : public ::testing::TestWithParam<std::pair<const ch
 TEST_P(CentrePairDerivatives, VelocityAndConstraintsAgainstFiniteDifferences) {
   const fesd::CentrePairSystem system = mixedSystem(GetParam().first, GetParam().second);
   const auto model = fesd::centrePairModel(system, "test");
-  ASSERT_EQ(model->constraintSize(), 6);
+  ASSERT_EQ(model->constraintSize(), 7);
   std::mt19937 random(41);
   for (int trial = 0; trial < 5; ++trial) {
     const Eigen::VectorXd z = fesd_test::randomVector(model->velocity()->inputSize(), random);
@@ -61,7 +65,7 @@ TEST_P(CentrePairDerivatives, VelocityAndConstraintsAgainstFiniteDifferences) {
     EXPECT_LT(velocity.hessian, fesd_test::kTolerance);
     const Eigen::VectorXd x = z.head(system.state_size);
     const auto constraints = fesd_test::checkAgainstFiniteDifferences(
-        *model->constraints(), x, fesd_test::randomVector(6, random));
+        *model->constraints(), x, fesd_test::randomVector(7, random));
     EXPECT_LT(constraints.jacobian, fesd_test::kTolerance);
     EXPECT_LT(constraints.hessian, fesd_test::kTolerance);
     // The Hessian of w . v is not the quadratic model's constant: it holds third derivatives.
@@ -84,13 +88,15 @@ TEST(CentrePairModel, ValuesAreTheGeometricOnes) {
   const int nq = 3;
   x.segment(nq, 2) << 1.0, 2.0;      // body 0
   x.segment(nq + 2, 2) << 0.5, 0.0;  // body 1
-  Eigen::VectorXd c(6);
+  Eigen::VectorXd c(7);
   model->constraints()->evaluate(x.data(), c.data());
   // At q = 0 the arm lies along x: its last sphere (hand/sphere_1) at 0.9.
   EXPECT_NEAR(c(0), 0.4 * 0.4 - 0.01, 1e-12);
   EXPECT_NEAR(c(4), 0.5 * 0.5 + 4.0 - 0.04, 1e-12);
   const Eigen::Vector3d n = system.pairs[3].point;
   EXPECT_NEAR(c(3), n.x() * 0.9 - 0.1, 1e-12);
+  // Body 0's sphere sits 0.1 right of and 0.2 below its position: at (1.1, 1.8).
+  EXPECT_NEAR(c(6), 0.2 * 0.2 + 1.8 * 1.8 - 0.05, 1e-12);
 }
 
 }  // namespace

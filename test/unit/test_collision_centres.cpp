@@ -78,7 +78,7 @@ TEST(CollisionCentres, RobotSphereDerivativesAgainstFiniteDifferences) {
   }
 }
 
-TEST(CollisionCentres, FreeBodyIsItsStateAndPlanarScenesDropZ) {
+TEST(CollisionCentres, FreeBodyIsItsStateItsSpheresOffsetAndPlanarScenesDropZ) {
   const auto robot = panda();
   const int nq = robot->numCoordinates();
   std::mt19937 random(6);
@@ -96,6 +96,14 @@ TEST(CollisionCentres, FreeBodyIsItsStateAndPlanarScenesDropZ) {
   EXPECT_EQ(planar.jacobian(sphere).row(2).norm(), 0.0);
   EXPECT_EQ(planar.position(sphere).head(2), spatial.position(sphere).head(2));
   EXPECT_EQ(spatial.weightedHessian(body, Eigen::Vector3d::Ones()).norm(), 0.0);
+  // A free body's sphere translates with it: its centre is offset, its derivatives the body's.
+  const CollisionCentre sphere_of_body{CollisionCentre::Source::kFreeBody, nq,
+                                       Eigen::Vector3d(0.1, -0.2, 0.3)};
+  EXPECT_TRUE(spatial.position(sphere_of_body)
+                  .isApprox(Eigen::Vector3d(x.tail(3)) + Eigen::Vector3d(0.1, -0.2, 0.3), 1e-15));
+  EXPECT_EQ(planar.position(sphere_of_body), Eigen::Vector3d(x(nq) + 0.1, x(nq + 1) - 0.2, 0.0));
+  EXPECT_EQ(spatial.jacobian(sphere_of_body), spatial.jacobian(body));
+  EXPECT_EQ(planar.variables(sphere_of_body), planar.variables(body));
 }
 
 }  // namespace

@@ -127,6 +127,9 @@ TEST(KinematicModel, FreeLinksAreReportedAndUprightCylindersAreDiscsInPlanarMode
   EXPECT_TRUE(planar.model.free_links[1].planar);
   EXPECT_EQ(planar.model.free_links[1].parent_link, "world");
   EXPECT_EQ(planar.model.numCoordinates(), 1);
+  ASSERT_EQ(planar.model.free_links[1].spheres.size(), 1u);  // the free link's own
+  EXPECT_EQ(planar.model.free_links[1].spheres[0].name, "puck/sphere_0");
+  EXPECT_EQ(planar.model.free_links[1].spheres[0].link, -1);
   ASSERT_EQ(planar.model.spheres.size(), 1u);  // free links' spheres are the scene's
   EXPECT_EQ(planar.model.spheres[0].name, "post/sphere_0");
   EXPECT_EQ(planar.model.spheres[0].radius, 0.2);
@@ -158,6 +161,16 @@ TEST(KinematicModel, OversizedInputIsRefusedAndLongChainsAreWalkedWithoutRecursi
             "the URDF has more than 100 collision spheres (limits/max_spheres)");
   EXPECT_EQ(fesd::buildKinematicModel(chainUrdf(200, "revolute"), generous).error,
             "the URDF has more than 64 moving joints");
+  // A free link's spheres count too.
+  std::string ball = R"(<robot name="r"><link name="world"/><link name="ball">)";
+  for (int k = 0; k < 3; ++k) {
+    ball += R"(<collision><geometry><sphere radius="0.1"/></geometry></collision>)";
+  }
+  ball += R"(</link><joint name="fly" type="floating"><parent link="world"/>
+    <child link="ball"/></joint></robot>)";
+  generous.max_spheres = 2;
+  EXPECT_EQ(fesd::buildKinematicModel(ball, generous).error,
+            "the URDF has more than 2 collision spheres (limits/max_spheres)");
 }
 
 }  // namespace

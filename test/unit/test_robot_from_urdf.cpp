@@ -76,17 +76,49 @@ TEST(RobotFromUrdf, AFreeLinkWithOneSphereIsAFreeBodyAtItsUrdfPose) {
   EXPECT_TRUE(spatial.free_bodies[0].position.isApprox(Eigen::Vector3d(0.6, 0.3, 0.0), 1e-12));
 }
 
+TEST(RobotFromUrdf, AFreeLinkWithSeveralSpheresIsOneBodyAtTheirMeanThatBoundsThem) {
+  // Spheres at (0, 0.1) and (0.2, 0.1) about the link's origin (0.6, 0.2), and a box (ignored).
+  const std::string bar =
+      kSphere + R"(<collision><origin xyz="0.2 0.1 0"/><geometry><sphere radius="0.03"/>
+      </geometry></collision><collision><geometry><box size="1 1 1"/></geometry></collision>)";
+  for (const PlanarChoice choice : {PlanarChoice::kInferred, PlanarChoice::kSpatial}) {
+    const fesd::RobotForScene read = fesd::robotForScene(armAndPuck(bar), choice);
+    ASSERT_EQ(read.error, "");
+    const int dim = read.dimension;
+    ASSERT_EQ(read.free_bodies.size(), 1u);
+    const fesd::SceneBody& body = read.free_bodies[0];
+    EXPECT_EQ(body.name, "puck");
+    EXPECT_FALSE(body.actuated);
+    const Eigen::VectorXd mean = (Eigen::VectorXd(3) << 0.7, 0.3, 0.0).finished().head(dim);
+    EXPECT_TRUE(body.position.isApprox(mean, 1e-12)) << body.position;
+    EXPECT_NEAR(body.radius, 0.1 + 0.05, 1e-12);  // the first sphere's far side
+    ASSERT_EQ(read.free_body_spheres.size(), 1u);
+    const std::vector<fesd::FreeBodySphere>& spheres = read.free_body_spheres[0];
+    ASSERT_EQ(spheres.size(), 2u);
+    EXPECT_EQ(spheres[0].name, "puck/sphere_0");
+    EXPECT_EQ(spheres[1].name, "puck/sphere_1");
+    EXPECT_TRUE(spheres[0].offset.isApprox(Eigen::Vector3d(-0.1, 0.0, 0.0), 1e-12));
+    EXPECT_TRUE(spheres[1].offset.isApprox(Eigen::Vector3d(0.1, 0.0, 0.0), 1e-12));
+    EXPECT_EQ(spheres[1].radius, 0.03);
+    EXPECT_EQ(read.robot->ignored_shapes, std::vector<std::string>{"puck/collision_2 (box)"});
+  }
+  // One sphere: the body is that sphere, with no sphere list.
+  const fesd::RobotForScene one = fesd::robotForScene(armAndPuck(kSphere), PlanarChoice::kInferred);
+  ASSERT_EQ(one.free_body_spheres.size(), 1u);
+  EXPECT_TRUE(one.free_body_spheres[0].empty());
+}
+
 TEST(RobotFromUrdf, AFreeLinkNoBodyCanStandForIsRefusedByName) {
   const auto error = [](const std::string& urdf, PlanarChoice choice = PlanarChoice::kInferred) {
     return fesd::robotForScene(urdf, choice).error;
   };
-  EXPECT_EQ(error(armAndPuck(kSphere + kSphere)),
-            "free link 'puck' (joint 'loose') must carry exactly one collision sphere (or "
-            "cylinder normal to the plane), it has 2 collision element(s)");
   EXPECT_EQ(error(armAndPuck(R"(<collision><geometry><box size="0.1 0.1 0.1"/></geometry>
       </collision>)")),
-            "free link 'puck' (joint 'loose') must carry exactly one collision sphere (or "
-            "cylinder normal to the plane), it has 1 collision element(s) of another shape");
+            "free link 'puck' (joint 'loose') has no collision sphere (or cylinder normal to the "
+            "plane): a free link needs one to be a body");
+  EXPECT_EQ(error(armAndPuck(""), PlanarChoice::kSpatial),
+            "free link 'puck' (joint 'loose') has no collision sphere: a free link needs one to "
+            "be a body");
   EXPECT_EQ(error(armAndPuck(kSphere, "floating", "arm")),
             "free link 'puck' (joint 'loose') hangs from a moving link: only free links of the "
             "world are modelled");

@@ -97,6 +97,40 @@ TEST(RobotScene, GapsAreDistancesBetweenSurfaces) {
   }
 }
 
+TEST(RobotScene, AFreeBodyWithSeveralSpheresPairsSphereBySphere) {
+  fesd::DiscScene discs(2);
+  discs.bodies().push_back({"bar", 0.1, Eigen::Vector2d(0.6, 0.3), false});
+  discs.bodies().push_back({"disc", 0.05, Eigen::Vector2d(0.6, 0.6), false});
+  discs.walls().push_back({"floor", Eigen::Vector2d(0.0, 1.0), -1.0});
+  const std::vector<fesd::FreeBodySphere> bar = {
+      {"bar/sphere_0", Eigen::Vector3d(-0.06, 0.0, 0.0), 0.04},
+      {"bar/sphere_1", Eigen::Vector3d(0.06, 0.0, 0.0), 0.04}};
+  const RobotScene scene(shipped("planar_arm.urdf"), Eigen::Vector3d::Zero(), discs, {bar});
+  ASSERT_EQ(scene.collisionBodies().size(), 2u + 1u + 9u);
+  EXPECT_EQ(scene.freeBodyCollisionBodies(0), (std::vector<int>{0, 1}));
+  EXPECT_EQ(scene.freeBodyCollisionBodies(1), (std::vector<int>{2}));
+  EXPECT_EQ(scene.collisionBodies()[scene.sphereBody(8)].name, "hand/sphere_1");
+  const std::vector<std::string> names = pairNames(scene);
+  EXPECT_FALSE(contains(names, "bar/sphere_0/bar/sphere_1"));  // one rigid body
+  for (const char* name : {"bar/sphere_0/disc", "bar/sphere_1/disc", "bar/sphere_1/hand/sphere_1",
+                           "bar/sphere_0/floor", "disc/hand/sphere_1"}) {
+    EXPECT_TRUE(contains(names, name)) << name;
+  }
+  const Eigen::VectorXd x0 = scene.initialState();
+  for (const RobotPair& pair : scene.allPairs()) {
+    const std::string name = scene.pairName(pair);
+    if (name == "bar/sphere_1/disc") {
+      EXPECT_NEAR(scene.pairGap(pair, x0), std::hypot(0.06, 0.3) - 0.09, 1e-12);
+    }
+    if (name == "bar/sphere_0/floor") {
+      EXPECT_NEAR(scene.pairGap(pair, x0), 1.3 - 0.04, 1e-12);
+    }
+    if (name == "bar/sphere_1/hand/sphere_1") {  // the hand's tip sphere at (0.9, 0), r 0.03
+      EXPECT_NEAR(scene.pairGap(pair, x0), std::hypot(0.24, 0.3) - 0.07, 1e-12);
+    }
+  }
+}
+
 TEST(RobotScene, ShoulderTurningAtConstantSpeedMeetsThePostAtTheComputedTime) {
   // At q = 0 the arm lies along x with its tip sphere (radius 0.03) at 0.9. The shoulder turning
   // at omega sweeps it along the circle of radius 0.9; a post of radius 0.05 on that circle at

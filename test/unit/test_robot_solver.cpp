@@ -145,6 +145,41 @@ TEST(RobotSolver, ALazyReplanStartsWithThePairsTheLastPlanEndedWith) {
       from_previous, warm.pair_rounds, warm.report.iterations, first.report.iterations);
 }
 
+TEST(RobotSolver, AFreeBodyWithTwoSpheresIsPushedAsOneRigidBody) {
+  // The shipped arm push with the disc replaced by a bar of two spheres across the push: the
+  // hand pushes whichever sphere it meets and the other follows.
+  const fesd::RobotTask shipped = fesd::planarArmPushTask(
+      std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf")));
+  fesd::DiscScene discs = shipped.scene.discs();
+  discs.bodies()[0] = {"bar", 0.08, Eigen::Vector2d(0.6, 0.0), false};
+  const std::vector<fesd::FreeBodySphere> bar = {
+      {"bar/sphere_0", Eigen::Vector3d(-0.04, 0.0, 0.0), 0.04},
+      {"bar/sphere_1", Eigen::Vector3d(0.04, 0.0, 0.0), 0.04}};
+  fesd::RobotTask task(
+      fesd::RobotScene(shipped.scene.robotPointer(), shipped.scene.initialJoints(), discs, {bar}));
+  task.bodies = shipped.bodies;
+  task.horizon = shipped.horizon;
+  task.num_intervals = shipped.num_intervals;
+  const fesd::RobotOutcome outcome = fesd::solveRobotTask(task, {}, {});
+  ASSERT_EQ(outcome.status, fesd::SolveStatus::kSuccess) << outcome.message;
+  EXPECT_LT(outcome.target_distances[0], 1e-3);
+  EXPECT_GT(outcome.boundary_gap, -1e-6 * 0.07);
+  EXPECT_GT(outcome.verification_gap, -1e-6 * 0.07);
+  EXPECT_LT(outcome.verification_error, 1e-2);
+  // The pushing pair is one of the bar's spheres against a hand sphere.
+  int bar_pairs = 0;
+  for (const fesd::RobotPair& pair : outcome.modelled) {
+    const std::string name = task.scene.pairName(pair);
+    bar_pairs += name.rfind("bar/sphere_", 0) == 0 && name.find("/hand/") != std::string::npos;
+  }
+  EXPECT_GT(bar_pairs, 0);
+  std::printf(
+      "two-sphere bar pushed: %s, %d Ipopt iterations, objective %.10g, bar %.2e from "
+      "its target, boundary gap %.2e, verification %.2e\n",
+      fesd::statusName(outcome.status).c_str(), outcome.report.iterations, outcome.report.objective,
+      outcome.target_distances[0], outcome.boundary_gap, outcome.verification_error);
+}
+
 TEST(RobotSolver, SmallestBoundaryGap) {
   const fesd::RobotTask task = armTask();
   std::vector<fesd::RobotPair> tip;

@@ -35,9 +35,10 @@ struct KinematicLink {
 /// A collision sphere: `<link>/sphere_<k>`, k the index among that link's `<collision>` elements.
 struct KinematicSphere {
   std::string name;
-  int link;
+  int link;                      ///< -1 for a free link's sphere
   Eigen::Vector3d local_centre;  ///< in the link's frame
-  Eigen::Vector3d joint_centre;  ///< in the moved frame of the link's joint (or the world)
+  /// In the moved frame of the link's joint (or the world); a free link's: in its parent's frame.
+  Eigen::Vector3d joint_centre;
   double radius;
 };
 
@@ -46,6 +47,12 @@ struct KinematicSphere {
 struct FreeLink {
   std::string link, joint, parent_link;
   bool planar;  ///< planar joint, else floating
+  /// The link's frame at its URDF pose, in the frame its parent link hangs from (the world for a
+  /// parent fixed to it).
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  ///< the joint's (a planar joint's normal)
+  bool has_children = false;                        ///< links hang below it
+  std::vector<KinematicSphere> spheres;             ///< its collision spheres, as a robot link's
 };
 
 /// A robot read once from its URDF; evaluated per q by the free functions of

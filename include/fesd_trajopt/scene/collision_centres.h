@@ -9,12 +9,15 @@
 
 namespace fesd {
 
-/// A collision body's centre as a function of the state x: a free body's position (x itself,
-/// linear) or a robot sphere's centre (forward kinematics of the joint coordinates q = x.head(nq)).
+/// A collision body's centre as a function of the state x: a free body's position plus a fixed
+/// offset (linear in x) or a robot sphere's centre (forward kinematics of the joint coordinates q =
+/// x.head(nq)).
 struct CollisionCentre {
   enum class Source { kFreeBody, kRobotSphere };
   Source source;
   int index;  ///< free body: the state index of its first coordinate; robot sphere: the sphere
+  /// A free body's sphere: its centre's offset from the body's position (it translates with it).
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
 };
 
 /// Evaluates collision centres and their derivatives in the few state coordinates each depends on

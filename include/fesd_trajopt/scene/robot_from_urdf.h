@@ -6,6 +6,7 @@
 
 #include "fesd_trajopt/kinematics/kinematic_model.h"
 #include "fesd_trajopt/scene/disc_scene.h"
+#include "fesd_trajopt/scene/robot_scene.h"
 
 namespace fesd {
 
@@ -17,8 +18,11 @@ struct RobotForScene {
   std::shared_ptr<const KinematicModel> robot;
   int dimension = 3;
   /// The robot's free links (planar or floating joints) as passive free bodies at their URDF
-  /// poses, named after their links.
+  /// poses, named after their links: at the mean of their spheres' centres, of the radius that
+  /// bounds them.
   std::vector<SceneBody> free_bodies;
+  /// Per free body, its spheres when it carries several (empty: the body is its one sphere).
+  std::vector<std::vector<FreeBodySphere>> free_body_spheres;
   std::string error;
 };
 
@@ -27,9 +31,9 @@ struct RobotForScene {
 /// that leaves the plane is refused, naming the first joint that does (firstJointLeavingPlane).
 /// Planar models also take cylinders normal to the plane as discs. A free link becomes a free
 /// body of the scene (a puck in the robot's URDF) when a body can stand for it: it hangs from a
-/// link fixed to the world, carries exactly one collision sphere (cylinder normal to the plane in
-/// planar scenes) and no links below it, and a planar joint only in a planar scene; any other is
-/// refused by name (a rigid group of spheres that translates is not modelled).
+/// link fixed to the world, carries collision spheres (cylinders normal to the plane in planar
+/// scenes; several translate together without rotating) and no links below it, and a planar
+/// joint only in a planar scene; any other is refused by name.
 RobotForScene robotForScene(const std::string& urdf_xml, PlanarChoice choice,
                             const KinematicModelOptions& limits = {});
 

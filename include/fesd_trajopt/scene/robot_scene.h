@@ -14,12 +14,22 @@
 
 namespace fesd {
 
-/// A collision body of a robot scene: a free body of the disc scene or a sphere of the robot.
+/// A sphere of a free body that carries several (a free link of a URDF): it translates with
+/// the body's position and never rotates.
+struct FreeBodySphere {
+  std::string name;        ///< "<link>/sphere_<k>"
+  Eigen::Vector3d offset;  ///< from the body's position
+  double radius;
+};
+
+/// A collision body of a robot scene: a free body of the disc scene (or one of its spheres) or a
+/// sphere of the robot.
 struct CollisionBody {
   std::string name;  ///< the body's name, or "<link>/sphere_<k>"
   double radius;
   CollisionCentre centre;
-  int sphere = -1;  ///< the robot sphere, -1 for a free body
+  int sphere = -1;     ///< the robot sphere, -1 for a free body's
+  int free_body = -1;  ///< the free body it belongs to, -1 for a robot sphere
 };
 
 /// A contact pair of a robot scene: collision body `body` (RobotScene::collisionBodies) against
@@ -44,7 +54,10 @@ struct RobotPair {
 /// the spheres' (x, y), exact for a planar robot (isPlanar).
 class RobotScene {
  public:
-  RobotScene(std::shared_ptr<const KinematicModel> robot, Eigen::VectorXd q0, DiscScene discs);
+  /// free_body_spheres: per free body (in the disc scene's order, possibly fewer), its spheres
+  /// when it carries several; a body without an entry is its one sphere.
+  RobotScene(std::shared_ptr<const KinematicModel> robot, Eigen::VectorXd q0, DiscScene discs,
+             std::vector<std::vector<FreeBodySphere>> free_body_spheres = {});
 
   const KinematicModel& robot() const { return *robot_; }
   const std::shared_ptr<const KinematicModel>& robotPointer() const { return robot_; }
@@ -64,15 +77,21 @@ class RobotScene {
   int bodyStateIndex(int body) const { return numJoints() + discs_.stateIndex(body); }
   Eigen::VectorXd initialState() const;
 
-  /// The free bodies first, in the disc scene's order, then every robot sphere.
+  /// The free bodies first, in the disc scene's order (each one, or its spheres), then every
+  /// robot sphere.
   const std::vector<CollisionBody>& collisionBodies() const { return collision_bodies_; }
-  int sphereBody(int sphere) const { return discs_.bodies().size() + sphere; }
+  int sphereBody(int sphere) const { return free_collision_bodies_ + sphere; }
+  /// The collision bodies of a free body (one, or one per sphere).
+  std::vector<int> freeBodyCollisionBodies(int body) const;
+  const std::vector<std::vector<FreeBodySphere>>& freeBodySpheres() const {
+    return free_body_spheres_;
+  }
 
-  /// Every pair that may touch. Free bodies pair as in DiscScene::allPairs; a robot sphere
-  /// pairs with every free body, and, when it moves, with every obstacle and wall; spheres
-  /// pair with each other only with self_collision, and then only on non-adjacent links
-  /// (neither's joint the other's or its parent) not disabled and apart at the start. Spheres
-  /// on the same link never pair.
+  /// Every pair that may touch. Free bodies pair as in DiscScene::allPairs, sphere by sphere
+  /// (a free body's own spheres never pair); a robot sphere pairs with every free body, and,
+  /// when it moves, with every obstacle and wall; robot spheres pair with each other only with
+  /// self_collision, and then only on non-adjacent links (neither's joint the other's or its
+  /// parent) not disabled and apart at the start. Spheres on the same link never pair.
   std::vector<RobotPair> allPairs() const;
   std::string pairName(const RobotPair& pair) const;
   /// The names of a pair's two sides: the collision body's, then the other's.
@@ -92,7 +111,9 @@ class RobotScene {
   std::shared_ptr<const KinematicModel> robot_;
   Eigen::VectorXd q0_;
   DiscScene discs_;
+  std::vector<std::vector<FreeBodySphere>> free_body_spheres_;
   std::vector<CollisionBody> collision_bodies_;
+  int free_collision_bodies_ = 0;
 };
 
 }  // namespace fesd
