@@ -2,8 +2,8 @@
 """Integration tests of the fesd_trajopt node on a robot scene: the shipped planar arm
 (config/robots/planar_arm.urdf, joints shoulder, elbow, wrist about z) pushing a disc, joint
 settings refused by name, a joint velocity command simulated, ~joint_states during playback, a
-robot goal of the ~plan action with feedback and cancel, a replan's warm start, a puck given in
-the robot's URDF."""
+robot goal of the ~plan action with feedback and cancel, a replan's warm start, pucks given in
+the robot's URDF (one sphere or several), and the spherized Panda pushing a puck on a table."""
 import math
 import time
 import unittest
@@ -13,9 +13,9 @@ import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
 from fesd_trajopt.msg import (BodySpec, ContactPair, JointSpec, PlanRequest, PlanTrajectoryAction,
-                              PlanTrajectoryGoal, Solution)
+                              PlanTrajectoryGoal, Solution, Wall)
 from fesd_trajopt.srv import Simulate, SimulateRequest, SolveTrajectory
-from geometry_msgs.msg import Point
+from geometry_msgs.msg import Point, Vector3
 from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectoryPoint
 from visualization_msgs.msg import MarkerArray
@@ -24,6 +24,7 @@ SOLVE = "/fesd_trajopt/solve_trajectory"
 SIMULATE = "/fesd_trajopt/simulate"
 PLAN = "/fesd_trajopt/plan"
 ARM = "/planar_arm"
+PANDA = "/panda"
 JOINTS = ["shoulder", "elbow", "wrist"]
 SPEED_LIMITS = [1.0, 1.5, 2.0]  # the URDF's <limit velocity>
 INTERVALS, ELEMENTS = 10, 2
@@ -195,6 +196,47 @@ class RobotNodeTest(unittest.TestCase):
                                     '<link name="puck"><collision><geometry><box size="1 1 1"/>')
         self.assert_invalid(request, "free link 'puck' (joint 'puck_joint') has no collision "
                                      "sphere")
+
+    def test_the_panda_pushes_a_puck_across_the_table(self):
+        # The shipped spatial push (scene/robot_scenes.h, pandaPushTask): the spherized Panda
+        # from its ready pose pushes a puck 0.2 m along x on a table (z >= 0), lazy pairs,
+        # inferred spatial; one rung (no accuracy ladder), unverified, as bench robot-push.
+        request = PlanRequest()
+        request.urdf_param = PANDA
+        request.bodies = [BodySpec(name="puck", add=True, radius=0.05,
+                                   initial_position=Point(0.45, 0.0, 0.05),
+                                   target=Point(0.65, 0.0, 0.05), target_weight=100.0)]
+        request.walls = [Wall(name="table", normal=Vector3(0.0, 0.0, 1.0), offset=0.0)]
+        ready = [0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785]
+        request.joints = [JointSpec(name="panda_joint%d" % (j + 1), has_initial_position=True,
+                                    initial_position=q) for j, q in enumerate(ready)]
+        request.has_horizon, request.horizon = True, 2.0
+        request.has_num_intervals, request.num_intervals = True, 5
+        request.has_num_elements, request.num_elements = True, 2
+        request.contact_pairs = PlanRequest.PAIRS_LAZY
+        request.target_accuracy = -1.0
+        response = self.solve(request)
+        solution = response.solution
+        print("panda push through the node: status %d, %d Ipopt iterations, %.2f s, puck %.2e "
+              "from its target, %d modelled / %d checked pairs"
+              % (response.status, solution.statistics.ipopt_iterations,
+                 solution.statistics.wall_time, solution.bodies[0].target_distance,
+                 len(solution.modeled_pairs), len(solution.checked_pairs)))
+        self.assertEqual(response.status, Solution.SUCCESS, response.message)
+        self.assertLess(solution.bodies[0].target_distance, 1e-3)
+        self.assertEqual(len(solution.joint_trajectory.joint_names), 7)
+        self.assertAlmostEqual(solution.joint_trajectory.points[0].positions[3], -2.356, places=9)
+        # No sphere inside the puck or the table at any element boundary; the checked pairs
+        # stay beyond the margin along the whole answer.
+        for pair in solution.modeled_pairs:
+            self.assertGreaterEqual(pair.min_distance, -1e-9, (pair.first, pair.second))
+        for pair in solution.checked_pairs:
+            self.assertGreater(pair.min_distance, 0.0, (pair.first, pair.second))
+        # Contact and release times per sphere pair: the puck meets a Panda sphere.
+        contacts = [e for e in solution.switches if "puck" in (e.first, e.second)]
+        self.assertTrue(contacts, solution.switches)
+        self.assertTrue(all(e.first.startswith("panda_") and "/sphere_" in e.first
+                            for e in contacts), contacts)
 
     def test_a_replan_warm_starts_from_the_last_robot_plan_or_says_why_not(self):
         first = self.solve(arm_push_request())

@@ -28,7 +28,7 @@ fesd_trajopt::ContactPair pairMessage(const fesd::RobotScene& scene,
   fesd_trajopt::ContactPair message;
   std::tie(message.first, message.second) = pairNames(scene, decision.pair);
   message.reason = decision.reason;
-  message.min_distance = std::numeric_limits<double>::quiet_NaN();  // not measured per pair
+  message.min_distance = decision.min_distance;
   return message;
 }
 

@@ -175,6 +175,7 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
     for (RobotPairDecision& decision : outcome.decisions) {
       if (!decision.checked) continue;
       const double gap = smallestPathGaps(task.scene, {decision.pair}, path)[0];
+      decision.min_distance = gap;
       if (gap >= options.pair_margin * robotPairSize(task.scene, decision.pair)) continue;
       decision.modelled = true;
       decision.checked = false;
@@ -185,6 +186,11 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
   }
   if (outcome.trajectory.states.empty()) return outcome;
   outcome.boundary_gap = smallestBoundaryGap(task.scene, outcome.modelled, outcome.trajectory);
+  for (RobotPairDecision& decision : outcome.decisions) {
+    if (decision.modelled) {
+      decision.min_distance = smallestBoundaryGap(task.scene, {decision.pair}, outcome.trajectory);
+    }
+  }
   judgeTargets(task, outcome);
   if (options.verify && outcome.status != SolveStatus::kCancelled) {
     const SimulationOptions fine =

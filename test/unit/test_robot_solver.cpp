@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "fesd_trajopt/scene/robot_lazy_pairs.h"
 #include "fesd_trajopt/scene/robot_scenes.h"
 #include "fesd_trajopt/scene/robot_solver.h"
 #include "support/robot_files.h"
@@ -139,6 +140,19 @@ TEST(RobotSolver, ALazyReplanStartsWithThePairsTheLastPlanEndedWith) {
     from_previous += decision.reason == "modelled in the previous solution (warm start)";
   }
   EXPECT_EQ(from_previous, static_cast<int>(first.structure.modelled_pairs.size()));
+  // Every pair in reach reports its smallest gap: the modelled ones' the plan holds >= 0, the
+  // checked ones' beyond the margin (else they would have been modelled).
+  int checked = 0;
+  for (const fesd::RobotPairDecision& decision : warm.decisions) {
+    if (decision.modelled) {
+      EXPECT_GE(decision.min_distance, -1e-9) << decision.reason;
+    }
+    if (!decision.checked) continue;
+    ++checked;
+    EXPECT_GE(decision.min_distance,
+              options.pair_margin * fesd::robotPairSize(task.scene, decision.pair));
+  }
+  EXPECT_GT(checked, 0);
   std::printf(
       "lazy arm push replanned: %d pairs from the last plan, %d rounds, %d iterations "
       "(first plan %d)\n",
