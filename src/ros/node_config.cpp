@@ -91,6 +91,10 @@ NodeConfig loadNodeConfig(const ros::NodeHandle& node) {
   if (!(c.contact_margin >= 0.0) || !std::isfinite(c.contact_margin)) {
     throw std::runtime_error("parameter contact_margin must be finite and >= 0");
   }
+  node.param("robot_all_pairs_up_to", c.robot_all_pairs_up_to, c.robot_all_pairs_up_to);
+  if (c.robot_all_pairs_up_to < 0) {
+    throw std::runtime_error("parameter robot_all_pairs_up_to must be >= 0");
+  }
   node.param("limits/max_bodies", c.limits.max_bodies, c.limits.max_bodies);
   node.param("limits/max_spheres", c.limits.max_spheres, c.limits.max_spheres);
   node.param("limits/max_obstacles", c.limits.max_obstacles, c.limits.max_obstacles);

@@ -37,6 +37,10 @@ struct NodeConfig {
   double playback_rate = 1.0;   ///< ~playback at this many times real time; 0: off
   bool lazy_pairs = true;       ///< ~contact_pairs: lazy (default) or all_in_reach
   double contact_margin = 0.1;  ///< ~contact_margin: lazy pairs' margin, relative to the radii
+  /// ~robot_all_pairs_up_to: with lazy contact_pairs, a robot scene with at most this many pairs
+  /// in reach still models them all (lazy rounds can end in other local optima, and few pairs
+  /// are cheap); more (a Panda's 118) are lazy.
+  int robot_all_pairs_up_to = 32;
   fesd::TaskLimits limits;
   std::map<std::string, BodyConfig> bodies;
   std::string scene_urdf;  ///< ~scene_urdf: the default scene

@@ -7,6 +7,7 @@
 
 #include "fesd_trajopt/examples/circle_example.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
+#include "fesd_trajopt/scene/robot_task.h"
 #include "fesd_trajopt/scene/scene_solver.h"
 #include "fesd_trajopt/solver/heap_policy.h"
 #include "fesd_trajopt/solver/stopwatch.h"
@@ -43,6 +44,14 @@ Discretization discretization(const Request& request, const NodeConfig& config) 
 
 /// The accuracy a plan request asks for: its own (> 0), the configured default (0), or none
 /// (< 0, or a default of 0): then 0.
+/// The pairs of a robot task that can touch within its horizon.
+int pairsInReach(const fesd::RobotTask& task) {
+  const std::vector<fesd::RobotPairDecision> decisions = fesd::decideRobotPairs(task);
+  return static_cast<int>(
+      std::count_if(decisions.begin(), decisions.end(),
+                    [](const fesd::RobotPairDecision& decision) { return decision.modelled; }));
+}
+
 double targetAccuracy(const fesd_trajopt::PlanRequest& request, const NodeConfig& config) {
   if (request.target_accuracy < 0.0) return 0.0;
   return request.target_accuracy > 0.0 ? request.target_accuracy : config.target_accuracy;
@@ -391,9 +400,9 @@ void TrajoptNode::handleRobotPlan(const fesd_trajopt::PlanRequest& request,
   fesd::RobotSolveOptions options;
   const std::string problem = solveOptions(request, config_, options.ocp);
   if (!problem.empty()) return refuse(answer, problem);
-  // All pairs in reach unless lazy ones are asked for: the core's default for robots (lazy
-  // pairs found another local optimum on the arm push, see RobotSolveOptions).
-  options.lazy_pairs = request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_LAZY;
+  options.lazy_pairs = request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_LAZY ||
+                       (request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_DEFAULT &&
+                        config_.lazy_pairs && pairsInReach(task) > config_.robot_all_pairs_up_to);
   options.pair_margin = config_.contact_margin;
   options.verify = request.verify;
   options.verification.num_stages = config_.verification_stages;

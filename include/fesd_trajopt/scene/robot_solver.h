@@ -25,8 +25,9 @@ struct RobotSolveOptions {
   bool lazy_pairs = false;
   double pair_margin = 0.1;  ///< relative to robotPairSize
   /// Re-simulate the optimal controls on a finer grid (at least the solve's stages, twice its
-  /// elements) with the modelled pairs and report the end state's deviation and the smallest
-  /// gap of every pair in reach.
+  /// elements) with every pair in reach that comes within pair_margin along the plan or the
+  /// re-simulation (added until none more does) and report the end state's deviation and the
+  /// smallest gap of every pair in reach.
   bool verify = true;
   DiscretizationOptions verification;
   const SolveMonitor* monitor = nullptr;  ///< progress and cancel of the solve; not owned
