@@ -42,16 +42,18 @@ Discretization discretization(const Request& request, const NodeConfig& config) 
   return d;
 }
 
-/// The accuracy a plan request asks for: its own (> 0), the configured default (0), or none
-/// (< 0, or a default of 0): then 0.
-/// The pairs of a robot task that can touch within its horizon.
-int pairsInReach(const fesd::RobotTask& task) {
+/// The pairs of a robot task that can touch within its horizon (0 for a task the solver will
+/// refuse).
+int pairsInReach(const fesd::RobotTask& task, const fesd::TaskLimits& limits) {
+  if (!fesd::validateRobotTask(task, limits).empty()) return 0;
   const std::vector<fesd::RobotPairDecision> decisions = fesd::decideRobotPairs(task);
   return static_cast<int>(
       std::count_if(decisions.begin(), decisions.end(),
                     [](const fesd::RobotPairDecision& decision) { return decision.modelled; }));
 }
 
+/// The accuracy a plan request asks for: its own (> 0), the configured default (0), or none
+/// (< 0, or a default of 0): then 0.
 double targetAccuracy(const fesd_trajopt::PlanRequest& request, const NodeConfig& config) {
   if (request.target_accuracy < 0.0) return 0.0;
   return request.target_accuracy > 0.0 ? request.target_accuracy : config.target_accuracy;
@@ -400,9 +402,10 @@ void TrajoptNode::handleRobotPlan(const fesd_trajopt::PlanRequest& request,
   fesd::RobotSolveOptions options;
   const std::string problem = solveOptions(request, config_, options.ocp);
   if (!problem.empty()) return refuse(answer, problem);
-  options.lazy_pairs = request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_LAZY ||
-                       (request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_DEFAULT &&
-                        config_.lazy_pairs && pairsInReach(task) > config_.robot_all_pairs_up_to);
+  options.lazy_pairs =
+      request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_LAZY ||
+      (request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_DEFAULT && config_.lazy_pairs &&
+       pairsInReach(task, config_.limits) > config_.robot_all_pairs_up_to);
   options.pair_margin = config_.contact_margin;
   options.verify = request.verify;
   options.verification.num_stages = config_.verification_stages;

@@ -19,9 +19,9 @@ std::string freeLinkBody(const KinematicModel& robot, const FreeLink& free, int 
   if (free.planar && dimension != 2) {
     return who + " is planar in a spatial scene: its plane is not modelled";
   }
-  const Eigen::Isometry3d world = robot.links[parent].offset * free.pose;
+  // The parent is fixed to the world, so the frame it hangs from is the world's.
   if (free.planar &&
-      std::abs(std::abs((world.linear() * free.axis).normalized().z()) - 1.0) > 1e-9) {
+      std::abs(std::abs((free.pose.linear() * free.axis).normalized().z()) - 1.0) > 1e-9) {
     return who + " slides in a plane other than the scene's (x, y): its normal must be z";
   }
   if (free.has_children) return who + " has links below it: a free link is modelled as one body";
@@ -34,7 +34,7 @@ std::string freeLinkBody(const KinematicModel& robot, const FreeLink& free, int 
   std::vector<Eigen::VectorXd> centres;
   Eigen::VectorXd mean = Eigen::VectorXd::Zero(dimension);
   for (const KinematicSphere& sphere : free.spheres) {
-    centres.push_back((robot.links[parent].offset * sphere.joint_centre).head(dimension));
+    centres.push_back(sphere.joint_centre.head(dimension));
     mean += centres.back() / static_cast<double>(free.spheres.size());
   }
   body = {free.link, 0.0, mean, false};

@@ -18,6 +18,10 @@ double robotPairSize(const RobotScene& scene, const RobotPair& pair) {
   return radius;
 }
 
+bool robotWithinMargin(const RobotScene& scene, const RobotPair& pair, double gap, double margin) {
+  return gap < margin * robotPairSize(scene, pair);
+}
+
 std::vector<double> smallestPathGaps(const RobotScene& scene, const std::vector<RobotPair>& pairs,
                                      const std::vector<Eigen::VectorXd>& path) {
   std::vector<double> gaps(pairs.size(), std::numeric_limits<double>::infinity());
@@ -44,7 +48,7 @@ std::vector<bool> robotPairsTheGuessNeeds(const RobotTask& task,
   }
   const std::vector<double> gaps = smallestPathGaps(task.scene, candidates, path);
   for (size_t k = 0; k < candidates.size(); ++k) {
-    needed[k] = needed[k] || gaps[k] < margin * robotPairSize(task.scene, candidates[k]);
+    needed[k] = needed[k] || robotWithinMargin(task.scene, candidates[k], gaps[k], margin);
   }
   return needed;
 }

@@ -107,7 +107,7 @@ bool addPairsWithinMargin(const RobotScene& scene, const std::vector<RobotPair>&
   const std::vector<double> gaps = smallestPathGaps(scene, candidates, path);
   bool added = false;
   for (size_t k = 0; k < candidates.size(); ++k) {
-    if (gaps[k] >= margin * robotPairSize(scene, candidates[k]) ||
+    if (!robotWithinMargin(scene, candidates[k], gaps[k], margin) ||
         std::find(simulated.begin(), simulated.end(), candidates[k]) != simulated.end()) {
       continue;
     }
@@ -223,7 +223,7 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
       if (!decision.checked) continue;
       const double gap = smallestPathGaps(task.scene, {decision.pair}, path)[0];
       decision.min_distance = gap;
-      if (gap >= options.pair_margin * robotPairSize(task.scene, decision.pair)) continue;
+      if (!robotWithinMargin(task.scene, decision.pair, gap, options.pair_margin)) continue;
       decision.modelled = true;
       decision.checked = false;
       decision.reason = "modelled from round " + std::to_string(round + 1);
@@ -233,9 +233,15 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
   }
   if (outcome.trajectory.states.empty()) return outcome;
   outcome.boundary_gap = smallestBoundaryGap(task.scene, outcome.modelled, outcome.trajectory);
+  // A modelled pair's gap at the stage points (where the plan holds it), a checked one's
+  // measured by the last round's check, unless that round failed before its check.
+  const std::vector<Eigen::VectorXd> stage_points = densePath(outcome.trajectory, 0);
+  const bool checked_last_round = outcome.status == SolveStatus::kSuccess;
   for (RobotPairDecision& decision : outcome.decisions) {
     if (decision.modelled) {
-      decision.min_distance = smallestBoundaryGap(task.scene, {decision.pair}, outcome.trajectory);
+      decision.min_distance = smallestPathGaps(task.scene, {decision.pair}, stage_points)[0];
+    } else if (decision.checked && !checked_last_round) {
+      decision.min_distance = std::numeric_limits<double>::quiet_NaN();
     }
   }
   judgeTargets(task, outcome);

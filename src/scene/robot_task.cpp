@@ -162,7 +162,10 @@ std::vector<double> collisionReach(const RobotTask& task) {
            {std::make_pair(pair.body, pair.other), std::make_pair(pair.other, pair.body)}) {
         if (reach[mover] == 0.0 || reach[still] > 0.0 || bodies[still].sphere >= 0) continue;
         if (scene.pairGap(pair, x0) - reach[mover] > 0.0) continue;
-        reach[still] = travel;
+        // A free body moves with all its spheres.
+        for (int sphere : scene.freeBodyCollisionBodies(bodies[still].free_body)) {
+          reach[sphere] = travel;
+        }
         grew = true;
       }
     }

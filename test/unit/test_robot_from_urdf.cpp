@@ -108,6 +108,39 @@ TEST(RobotFromUrdf, AFreeLinkWithSeveralSpheresIsOneBodyAtTheirMeanThatBoundsThe
   EXPECT_TRUE(one.free_body_spheres[0].empty());
 }
 
+TEST(RobotFromUrdf, AFreeLinkUnderAnOffsetTurnedLinkIsPlacedInTheWorld) {
+  // The table sits at (1, 0, 0) turned 90 degrees about z; the puck's joint at (0.6, 0.2, 0) on
+  // it and its sphere 0.1 along the puck's y: (1, 0, 0) + Rz (0.6, 0.3, 0) = (0.7, 0.6, 0).
+  const auto urdf = [](const std::string& joint, const std::string& table_rpy) {
+    return R"(<robot name="r"><link name="world"/>
+    <link name="arm"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
+    <joint name="hinge" type="revolute"><parent link="world"/><child link="arm"/>
+      <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+    <link name="table"/>
+    <joint name="stand" type="fixed"><parent link="world"/><child link="table"/>
+      <origin xyz="1 0 0" rpy=")" +
+           table_rpy + R"("/></joint>
+    <link name="puck">)" +
+           kSphere + R"(</link>
+    <joint name="loose" type=")" +
+           joint + R"("><parent link="table"/><child link="puck"/>
+      <origin xyz="0.6 0.2 0"/><axis xyz="0 0 1"/></joint></robot>)";
+  };
+  for (const std::string joint : {"floating", "planar"}) {
+    const fesd::RobotForScene read =
+        fesd::robotForScene(urdf(joint, "0 0 1.5707963267948966"), PlanarChoice::kInferred);
+    ASSERT_EQ(read.error, "") << joint;
+    ASSERT_EQ(read.free_bodies.size(), 1u);
+    EXPECT_TRUE(read.free_bodies[0].position.isApprox(Eigen::Vector2d(0.7, 0.6), 1e-12))
+        << read.free_bodies[0].position;
+  }
+  // Turned about x, the planar joint's normal lies in the scene's plane.
+  EXPECT_EQ(
+      fesd::robotForScene(urdf("planar", "1.5707963267948966 0 0"), PlanarChoice::kInferred).error,
+      "free link 'puck' (joint 'loose') slides in a plane other than the scene's (x, y): "
+      "its normal must be z");
+}
+
 TEST(RobotFromUrdf, AFreeLinkNoBodyCanStandForIsRefusedByName) {
   const auto error = [](const std::string& urdf, PlanarChoice choice = PlanarChoice::kInferred) {
     return fesd::robotForScene(urdf, choice).error;

@@ -106,6 +106,34 @@ TEST(RobotTask, OnlyAllowedPairsAreModelledAndOnlyThroughThemDoesAPassiveBodyMov
   EXPECT_EQ(fesd::collisionReach(task)[0], 0.0);
 }
 
+TEST(RobotTask, AFreeBodyPushedThroughOneSphereMovesAllOfThem) {
+  // A bar of two spheres; only its first may meet the hand, only its second the wall beyond.
+  fesd::DiscScene discs(2);
+  discs.bodies().push_back({"bar", 0.1, Eigen::Vector2d(0.6, 0.3), false});
+  discs.walls().push_back({"side", Eigen::Vector2d(-1.0, 0.0), -1.0});  // x <= 1
+  const std::vector<fesd::FreeBodySphere> bar = {
+      {"bar/sphere_0", Eigen::Vector3d(-0.05, 0.0, 0.0), 0.05},
+      {"bar/sphere_1", Eigen::Vector3d(0.05, 0.0, 0.0), 0.05}};
+  RobotTask task(
+      fesd::RobotScene(armTask().scene.robotPointer(), Eigen::Vector3d::Zero(), discs, {bar}));
+  task.horizon = 1.0;
+  for (const fesd::RobotPair& pair : task.scene.allPairs()) {
+    const std::string name = task.scene.pairName(pair);
+    if (name == "bar/sphere_0/hand/sphere_1" || name == "bar/sphere_1/side") {
+      task.allowed_pairs.push_back(pair);
+    }
+  }
+  ASSERT_EQ(task.allowed_pairs.size(), 2u);
+  const std::vector<double> reach = fesd::collisionReach(task);
+  EXPECT_GT(reach[0], 0.0);
+  EXPECT_EQ(reach[1], reach[0]);
+  for (const fesd::RobotPairDecision& d : fesd::decideRobotPairs(task)) {
+    if (task.scene.pairName(d.pair) == "bar/sphere_1/side") {
+      EXPECT_TRUE(d.modelled) << d.reason;
+    }
+  }
+}
+
 TEST(RobotTask, OcpBoundsAndCosts) {
   RobotTask task = armTask();
   task.joints[2].target = 0.3;

@@ -37,7 +37,8 @@ struct KinematicSphere {
   std::string name;
   int link;                      ///< -1 for a free link's sphere
   Eigen::Vector3d local_centre;  ///< in the link's frame
-  /// In the moved frame of the link's joint (or the world); a free link's: in its parent's frame.
+  /// In the moved frame of the link's joint (or the world); a free link's: in the frame its
+  /// parent link hangs from (FreeLink::pose's).
   Eigen::Vector3d joint_centre;
   double radius;
 };

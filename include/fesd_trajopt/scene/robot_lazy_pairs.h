@@ -13,6 +13,8 @@ namespace fesd {
 /// The length a robot pair's margin is relative to: the sum of its radii (a wall pair: the
 /// body's radius), as pairSize for discs.
 double robotPairSize(const RobotScene& scene, const RobotPair& pair);
+/// Whether a gap of the pair is within margin * robotPairSize (the lazy pairs' test).
+bool robotWithinMargin(const RobotScene& scene, const RobotPair& pair, double gap, double margin);
 
 /// The smallest gap of each pair over the states of a path. A robot sphere moves on arcs, so
 /// unlike smallestGap this only samples: pass a dense path (densePath).

@@ -69,8 +69,9 @@ struct RobotPairDecision {
   std::string reason;
   /// In reach but not modelled: checked on the solution instead (lazy pairs, solveRobotTask).
   bool checked = false;
-  /// The smallest gap along the answer (solveRobotTask): a modelled pair's at the element
-  /// boundaries, a checked pair's between them too (densePath); NaN when not measured.
+  /// The smallest gap along the answer (solveRobotTask): a modelled pair's at the stage points
+  /// (where the plan holds it), a checked pair's between them too (densePath); NaN when not
+  /// measured.
   double min_distance = std::numeric_limits<double>::quiet_NaN();
 };
 
