@@ -177,11 +177,14 @@ class RobotNodeTest(unittest.TestCase):
           </collision></link>""")
         request.urdf = two_spheres
         request.bodies[0].target = Point(0.65, 0.2, 0.0)
+        request.contact_pairs = PlanRequest.PAIRS_DEFAULT  # few pairs in reach: all modelled
         response = self.solve(request)
         print("two-sphere puck in the URDF: status %d, %d Ipopt iterations, %.2e from its target"
               % (response.status, response.solution.statistics.ipopt_iterations,
                  response.solution.bodies[0].target_distance))
         self.assertEqual(response.status, Solution.SUCCESS, response.message)
+        self.assertEqual(len(response.solution.checked_pairs), 0)
+        self.assertGreaterEqual(len(response.solution.modeled_pairs), 18)  # 9 arm x 2 puck spheres
         puck = response.solution.bodies[0]
         self.assertAlmostEqual(puck.positions[0].x, 0.65, places=12)
         self.assertLess(puck.target_distance, 1e-3)
