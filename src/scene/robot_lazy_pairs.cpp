@@ -26,9 +26,8 @@ std::vector<double> smallestPathGaps(const RobotScene& scene, const std::vector<
                                      const std::vector<Eigen::VectorXd>& path) {
   std::vector<double> gaps(pairs.size(), std::numeric_limits<double>::infinity());
   for (const Eigen::VectorXd& x : path) {
-    for (size_t k = 0; k < pairs.size(); ++k) {
-      gaps[k] = std::min(gaps[k], scene.pairGap(pairs[k], x));
-    }
+    const std::vector<double> at = scene.pairGaps(pairs, x);
+    for (size_t k = 0; k < pairs.size(); ++k) gaps[k] = std::min(gaps[k], at[k]);
   }
   return gaps;
 }

@@ -157,13 +157,28 @@ double RobotScene::constraintValue(const RobotPair& pair, const Eigen::VectorXd&
 }
 
 double RobotScene::pairGap(const RobotPair& pair, const Eigen::VectorXd& x) const {
-  const double c = constraintValue(pair, x);
-  if (pair.kind == RobotPair::Kind::kWall) return c;
-  const double radii =
-      collision_bodies_[pair.body].radius + (pair.kind == RobotPair::Kind::kBody
-                                                 ? collision_bodies_[pair.other].radius
-                                                 : discs_.obstacles()[pair.other].radius);
-  return std::sqrt(std::max(0.0, c + radii * radii)) - radii;
+  return pairGaps({pair}, x)[0];
+}
+
+std::vector<double> RobotScene::pairGaps(const std::vector<RobotPair>& pairs,
+                                         const Eigen::VectorXd& x) const {
+  CentreEvaluator evaluator(robot_, dimension());
+  evaluator.setState(x.data());  // one forward kinematics for all pairs
+  std::vector<double> gaps;
+  gaps.reserve(pairs.size());
+  for (const RobotPair& pair : pairs) {
+    const double c = centrePairValue(evaluator, centrePair(pair));
+    if (pair.kind == RobotPair::Kind::kWall) {
+      gaps.push_back(c);
+      continue;
+    }
+    const double radii =
+        collision_bodies_[pair.body].radius + (pair.kind == RobotPair::Kind::kBody
+                                                   ? collision_bodies_[pair.other].radius
+                                                   : discs_.obstacles()[pair.other].radius);
+    gaps.push_back(std::sqrt(std::max(0.0, c + radii * radii)) - radii);
+  }
+  return gaps;
 }
 
 std::shared_ptr<const DcsModel> RobotScene::model(const std::vector<RobotPair>& pairs) const {

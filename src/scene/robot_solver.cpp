@@ -99,6 +99,22 @@ OcpSolution firstRound(OcpSolver& solver, const TrajectoryGuess& guess,
   return solution;
 }
 
+/// Sets min_distance of the modelled (or the checked) decisions to their smallest gap along
+/// the path, with one forward kinematics per state for all of them.
+void measureGaps(const RobotScene& scene, const std::vector<Eigen::VectorXd>& path, bool modelled,
+                 std::vector<RobotPairDecision>& decisions) {
+  std::vector<RobotPair> pairs;
+  std::vector<RobotPairDecision*> measured;
+  for (RobotPairDecision& decision : decisions) {
+    if (modelled ? decision.modelled : decision.checked) {
+      pairs.push_back(decision.pair);
+      measured.push_back(&decision);
+    }
+  }
+  const std::vector<double> gaps = smallestPathGaps(scene, pairs, path);
+  for (size_t k = 0; k < measured.size(); ++k) measured[k]->min_distance = gaps[k];
+}
+
 /// Adds to `simulated` the pairs of `candidates` that come within the margin along the path;
 /// whether it added any.
 bool addPairsWithinMargin(const RobotScene& scene, const std::vector<RobotPair>& candidates,
@@ -152,7 +168,7 @@ double smallestBoundaryGap(const RobotScene& scene, const std::vector<RobotPair>
                            const Trajectory& trajectory) {
   double gap = std::numeric_limits<double>::infinity();
   for (const Eigen::VectorXd& x : trajectory.states) {
-    for (const RobotPair& pair : pairs) gap = std::min(gap, scene.pairGap(pair, x));
+    for (double at : scene.pairGaps(pairs, x)) gap = std::min(gap, at);
   }
   return gap;
 }
@@ -217,13 +233,13 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
     previous_round = outcome.trajectory;
     previous_pairs = outcome.modelled;
     // Checked pairs that came within the margin along the solution are modelled next round.
-    const std::vector<Eigen::VectorXd> path = densePath(outcome.trajectory);
+    measureGaps(task.scene, densePath(outcome.trajectory), false, outcome.decisions);
     bool added = false;
     for (RobotPairDecision& decision : outcome.decisions) {
-      if (!decision.checked) continue;
-      const double gap = smallestPathGaps(task.scene, {decision.pair}, path)[0];
-      decision.min_distance = gap;
-      if (!robotWithinMargin(task.scene, decision.pair, gap, options.pair_margin)) continue;
+      if (!decision.checked || !robotWithinMargin(task.scene, decision.pair, decision.min_distance,
+                                                  options.pair_margin)) {
+        continue;
+      }
       decision.modelled = true;
       decision.checked = false;
       decision.reason = "modelled from round " + std::to_string(round + 1);
@@ -235,13 +251,10 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
   outcome.boundary_gap = smallestBoundaryGap(task.scene, outcome.modelled, outcome.trajectory);
   // A modelled pair's gap at the stage points (where the plan holds it), a checked one's
   // measured by the last round's check, unless that round failed before its check.
-  const std::vector<Eigen::VectorXd> stage_points = densePath(outcome.trajectory, 0);
-  const bool checked_last_round = outcome.status == SolveStatus::kSuccess;
-  for (RobotPairDecision& decision : outcome.decisions) {
-    if (decision.modelled) {
-      decision.min_distance = smallestPathGaps(task.scene, {decision.pair}, stage_points)[0];
-    } else if (decision.checked && !checked_last_round) {
-      decision.min_distance = std::numeric_limits<double>::quiet_NaN();
+  measureGaps(task.scene, densePath(outcome.trajectory, 0), true, outcome.decisions);
+  if (outcome.status != SolveStatus::kSuccess) {
+    for (RobotPairDecision& decision : outcome.decisions) {
+      if (decision.checked) decision.min_distance = std::numeric_limits<double>::quiet_NaN();
     }
   }
   judgeTargets(task, outcome);

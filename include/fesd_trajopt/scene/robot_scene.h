@@ -100,6 +100,8 @@ class RobotScene {
   double constraintValue(const RobotPair& pair, const Eigen::VectorXd& x) const;
   /// The signed gap between the pair's surfaces at x (negative: overlap).
   double pairGap(const RobotPair& pair, const Eigen::VectorXd& x) const;
+  /// pairGap of each pair at x, with one forward kinematics for all.
+  std::vector<double> pairGaps(const std::vector<RobotPair>& pairs, const Eigen::VectorXd& x) const;
 
   /// The DCS with the given pairs as its constraints, in that order.
   std::shared_ptr<const DcsModel> model(const std::vector<RobotPair>& pairs) const;
