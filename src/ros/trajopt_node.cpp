@@ -7,7 +7,6 @@
 
 #include "fesd_trajopt/examples/circle_example.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
-#include "fesd_trajopt/scene/robot_task.h"
 #include "fesd_trajopt/scene/scene_solver.h"
 #include "fesd_trajopt/solver/heap_policy.h"
 #include "fesd_trajopt/solver/stopwatch.h"
@@ -40,16 +39,6 @@ Discretization discretization(const Request& request, const NodeConfig& config) 
               std::to_string(d.stages);
   }
   return d;
-}
-
-/// The pairs of a robot task that can touch within its horizon (0 for a task the solver will
-/// refuse).
-int pairsInReach(const fesd::RobotTask& task, const fesd::TaskLimits& limits) {
-  if (!fesd::validateRobotTask(task, limits).empty()) return 0;
-  const std::vector<fesd::RobotPairDecision> decisions = fesd::decideRobotPairs(task);
-  return static_cast<int>(
-      std::count_if(decisions.begin(), decisions.end(),
-                    [](const fesd::RobotPairDecision& decision) { return decision.modelled; }));
 }
 
 /// The accuracy a plan request asks for: its own (> 0), the configured default (0), or none
@@ -402,10 +391,10 @@ void TrajoptNode::handleRobotPlan(const fesd_trajopt::PlanRequest& request,
   fesd::RobotSolveOptions options;
   const std::string problem = solveOptions(request, config_, options.ocp);
   if (!problem.empty()) return refuse(answer, problem);
-  options.lazy_pairs =
-      request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_LAZY ||
-      (request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_DEFAULT && config_.lazy_pairs &&
-       pairsInReach(task, config_.limits) > config_.robot_all_pairs_up_to);
+  const bool by_default = request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_DEFAULT;
+  options.lazy_pairs = request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_LAZY ||
+                       (by_default && config_.lazy_pairs);
+  options.all_pairs_up_to = by_default ? config_.robot_all_pairs_up_to : 0;
   options.pair_margin = config_.contact_margin;
   options.verify = request.verify;
   options.verification.num_stages = config_.verification_stages;

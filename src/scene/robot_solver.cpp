@@ -186,7 +186,7 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
   const int elements = options.ocp.discretization.num_elements;
   const RobotGuess guess = planRobotGuess(task, candidates, elements);
   outcome.pusher_sphere = guess.pusher_sphere;
-  if (options.lazy_pairs) {
+  if (options.lazy_pairs && static_cast<int>(candidates.size()) > options.all_pairs_up_to) {
     std::string why;
     const std::vector<bool> needed = firstLazyPairs(task, candidates, guess.guess, options, why);
     size_t k = 0;

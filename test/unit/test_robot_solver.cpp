@@ -159,6 +159,24 @@ TEST(RobotSolver, ALazyReplanStartsWithThePairsTheLastPlanEndedWith) {
       from_previous, warm.pair_rounds, warm.report.iterations, first.report.iterations);
 }
 
+TEST(RobotSolver, LazyPairsModelEveryPairOfATaskWithFewInReach) {
+  fesd::RobotSolveOptions options;
+  options.ocp.discretization.num_elements = 2;
+  options.verify = false;
+  options.lazy_pairs = true;
+  options.all_pairs_up_to = 9;  // the arm push has 9 pairs in reach
+  const fesd::RobotTask task = fesd::planarArmPushTask(
+      std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf")));
+  const fesd::RobotOutcome all = fesd::solveRobotTask(task, {}, options);
+  ASSERT_EQ(all.status, fesd::SolveStatus::kSuccess) << all.message;
+  EXPECT_EQ(all.modelled.size(), 9u);
+  EXPECT_EQ(all.pair_rounds, 1);
+  options.all_pairs_up_to = 8;
+  const fesd::RobotOutcome lazy = fesd::solveRobotTask(task, {}, options);
+  ASSERT_EQ(lazy.status, fesd::SolveStatus::kSuccess) << lazy.message;
+  EXPECT_LT(lazy.modelled.size(), 9u);
+}
+
 TEST(RobotSolver, AFreeBodyWithTwoSpheresIsPushedAsOneRigidBody) {
   // The shipped arm push with the disc replaced by a bar of two spheres across the push: the
   // hand pushes whichever sphere it meets and the other follows.

@@ -23,6 +23,9 @@ struct RobotSolveOptions {
   /// push it ended with 2 of 9 pairs in another local optimum (two hand spheres on the disc in
   /// the last interval) that its re-simulation misses by 6e-2, against 3e-5 with all pairs.
   bool lazy_pairs = false;
+  /// With lazy_pairs, a task with at most this many pairs in reach models them all anyway (few
+  /// pairs are cheap, and lazy rounds can end in other local optima, as on the arm push).
+  int all_pairs_up_to = 0;
   double pair_margin = 0.1;  ///< relative to robotPairSize
   /// Re-simulate the optimal controls on a finer grid (at least the solve's stages, twice its
   /// elements) with every pair in reach that comes within pair_margin along the plan or the
