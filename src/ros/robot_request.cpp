@@ -53,12 +53,6 @@ std::string applyJointSpec(const fesd_trajopt::JointSpec& spec, fesd::JointTask&
   return "";
 }
 
-/// Whether a requested name names one side of a robot pair: that body, obstacle or wall, or the
-/// link of a robot sphere (standing for each of its spheres).
-bool namesSide(const std::string& requested, const std::string& side) {
-  return side == requested || side.rfind(requested + "/sphere_", 0) == 0;
-}
-
 /// The request's allowed_pairs as the task's; "" or why not.
 std::string allowPairs(const std::vector<fesd_trajopt::ContactPair>& allowed,
                        fesd::RobotTask& task) {
@@ -67,8 +61,8 @@ std::string allowPairs(const std::vector<fesd_trajopt::ContactPair>& allowed,
     bool found = false;
     for (const fesd::RobotPair& pair : all) {
       const auto [a, b] = task.scene.pairSides(pair);
-      if ((namesSide(entry.first, a) && namesSide(entry.second, b)) ||
-          (namesSide(entry.second, a) && namesSide(entry.first, b))) {
+      if ((fesd::namesSide(entry.first, a) && fesd::namesSide(entry.second, b)) ||
+          (fesd::namesSide(entry.second, a) && fesd::namesSide(entry.first, b))) {
         task.allowed_pairs.push_back(pair);
         found = true;
       }

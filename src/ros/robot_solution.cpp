@@ -68,10 +68,8 @@ void fitToRobotScale(const fesd_trajopt::Solution& solution,
     if (m.ns != "switch_labels" || label >= solution.switches.size()) continue;
     const fesd_trajopt::SwitchEvent& event = solution.switches[label];
     for (const fesd_trajopt::BodyTrajectory& body : solution.bodies) {
-      // The body touched, or the body whose sphere `<name>/sphere_<k>` was.
-      const bool touched =
-          body.name == event.second || event.second.rfind(body.name + "/sphere_", 0) == 0;
-      if (!touched || body.positions.empty()) continue;
+      // The body touched, or the body whose sphere was.
+      if (!fesd::namesSide(body.name, event.second) || body.positions.empty()) continue;
       size_t k = 0;  // the element boundary at the switch
       while (k + 1 < solution.times.size() && solution.times[k] < event.time - 1e-12) ++k;
       m.pose.position = body.positions[std::min(k, body.positions.size() - 1)];

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 
@@ -607,6 +608,17 @@ std::vector<Eigen::VectorXd> searchDirections(int dim) {
   return directions;
 }
 
+/// The boundary between `reachable` (where `ok` holds) and `unreachable`, halved `halvings`
+/// times: the last point found reachable.
+double bisect(double reachable, double unreachable, int halvings,
+              const std::function<bool(double)>& ok) {
+  for (int halving = 0; halving < halvings; ++halving) {
+    const double middle = 0.5 * (reachable + unreachable);
+    (ok(middle) ? reachable : unreachable) = middle;
+  }
+  return reachable;
+}
+
 /// Where the plan pushes a passive body: its target when the pushers can be placed to push it
 /// there (workspace bounds), can push it there in time (pushableInTime) and it is clear of
 /// obstacles and walls; otherwise the nearest end
@@ -638,11 +650,9 @@ PushPlan::ShortPush pushableEnd(const SceneTask& task, const std::vector<Contact
   if (at_target.in_time) return {pushed, target};
   PushPlan::ShortPush short_push{pushed, start, at_target.placeable};
   if (short_push.time_limited) {  // as far as time allows on the way to the target
-    double reachable = 0.0, unreachable = 1.0;
-    for (int halving = 0; halving < 20; ++halving) {
-      const double middle = 0.5 * (reachable + unreachable);
-      (pushable(start + middle * (target - start)) ? reachable : unreachable) = middle;
-    }
+    const double reachable = bisect(0.0, 1.0, 20, [&](double fraction) {
+      return pushable(start + fraction * (target - start));
+    });
     short_push.end = start + reachable * (target - start);
     return short_push;
   }
@@ -656,11 +666,9 @@ PushPlan::ShortPush pushableEnd(const SceneTask& task, const std::vector<Contact
     for (const Eigen::VectorXd& direction : directions) {
       if (!replacement(target + ring * spacing * direction)) continue;
       // The ring inside was out of reach in this direction: bisect between the two.
-      double reachable = ring * spacing, unreachable = (ring - 1) * spacing;
-      for (int halving = 0; halving < 10; ++halving) {
-        const double middle = 0.5 * (reachable + unreachable);
-        (replacement(target + middle * direction) ? reachable : unreachable) = middle;
-      }
+      const double reachable = bisect(ring * spacing, (ring - 1) * spacing, 10, [&](double radius) {
+        return replacement(target + radius * direction);
+      });
       short_push.end = target + reachable * direction;
       return short_push;
     }

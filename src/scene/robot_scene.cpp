@@ -6,6 +6,10 @@
 
 namespace fesd {
 
+bool namesSide(const std::string& name, const std::string& side) {
+  return side == name || side.rfind(name + "/sphere_", 0) == 0;
+}
+
 RobotScene::RobotScene(std::shared_ptr<const KinematicModel> robot, Eigen::VectorXd q0,
                        DiscScene discs, std::vector<std::vector<FreeBodySphere>> free_body_spheres)
     : robot_(std::move(robot)),

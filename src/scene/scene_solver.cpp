@@ -130,15 +130,12 @@ void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const PushPlan& 
            << targetTolerance(t.target_weight);
     for (const PushPlan::ShortPush& push : plan.short_pushes) {
       if (push.body != static_cast<int>(b)) continue;
-      if (push.time_limited) {
-        missed << " (out of the pushers' reach within the horizon at their speed bounds; planned "
-                  "as far towards it as time allows, ("
-               << push.end.transpose() << "))";
-      } else {
-        missed << " (out of the pushers' reach: workspace bounds, obstacles or walls; planned to "
-                  "the nearest end they can push it to, ("
-               << push.end.transpose() << "))";
-      }
+      missed << (push.time_limited
+                     ? " (out of the pushers' reach within the horizon at their speed bounds; "
+                       "planned as far towards it as time allows, ("
+                     : " (out of the pushers' reach: workspace bounds, obstacles or walls; planned "
+                       "to the nearest end they can push it to, (")
+             << push.end.transpose() << "))";
     }
   }
   if (outcome.status == SolveStatus::kSuccess && missed.tellp() > 0) {

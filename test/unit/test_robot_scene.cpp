@@ -97,6 +97,15 @@ TEST(RobotScene, GapsAreDistancesBetweenSurfaces) {
   }
 }
 
+TEST(RobotScene, ANameNamesItsBodyOrTheSpheresOfItsLink) {
+  EXPECT_TRUE(fesd::namesSide("hand", "hand"));
+  EXPECT_TRUE(fesd::namesSide("hand", "hand/sphere_1"));
+  EXPECT_TRUE(fesd::namesSide("hand/sphere_1", "hand/sphere_1"));
+  EXPECT_FALSE(fesd::namesSide("hand/sphere_1", "hand/sphere_10"));
+  EXPECT_FALSE(fesd::namesSide("han", "hand/sphere_1"));
+  EXPECT_FALSE(fesd::namesSide("hand", "handle"));
+}
+
 TEST(RobotScene, AFreeBodyWithSeveralSpheresPairsSphereBySphere) {
   fesd::DiscScene discs(2);
   discs.bodies().push_back({"bar", 0.1, Eigen::Vector2d(0.6, 0.3), false});

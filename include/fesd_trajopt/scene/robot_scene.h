@@ -22,6 +22,10 @@ struct FreeBodySphere {
   double radius;
 };
 
+/// Whether `name` names the collision body `side`: as that body, obstacle or wall, or as the
+/// link (or free body) whose sphere `<name>/sphere_<k>` it is.
+bool namesSide(const std::string& name, const std::string& side);
+
 /// A collision body of a robot scene: a free body of the disc scene (or one of its spheres) or a
 /// sphere of the robot.
 struct CollisionBody {
