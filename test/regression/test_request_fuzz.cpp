@@ -11,6 +11,8 @@
 
 #include "fesd_trajopt/discretization/pds_discretization.h"
 #include "fesd_trajopt/scene/moving_part.h"
+#include "fesd_trajopt/scene/robot_from_urdf.h"
+#include "fesd_trajopt/scene/robot_task.h"
 #include "fesd_trajopt/scene/scene_task.h"
 #include "fesd_trajopt/scene/urdf_scene.h"
 
@@ -251,6 +253,26 @@ TEST(RequestFuzz, EveryDefectOfAValidTaskIsRefusedByName) {
   }
 }
 
+/// `xml` with 1 to 4 random edits (deletions, insertions, replacements) of XML and number
+/// characters.
+std::string mutatedXml(std::string xml, Fuzzer& fuzzer) {
+  const std::string alphabet = "<>/=\" -.0123456789eEnaifNx\n";
+  for (int edits = fuzzer.integer(1, 4); edits > 0; --edits) {
+    const size_t at = fuzzer.integer(0, static_cast<int>(xml.size()) - 1);
+    switch (fuzzer.integer(0, 2)) {
+      case 0:
+        xml.erase(at, fuzzer.integer(1, 8));
+        break;
+      case 1:
+        xml.insert(at, 1, alphabet[fuzzer.integer(0, alphabet.size() - 1)]);
+        break;
+      default:
+        xml[at] = alphabet[fuzzer.integer(0, alphabet.size() - 1)];
+    }
+  }
+  return xml;
+}
+
 TEST(RequestFuzz, MutatedUrdfNeverCrashesTheSceneReader) {
   const std::string urdf = R"(<robot name="r"><link name="world"/>
     <link name="a"><collision><geometry><sphere radius="0.5"/></geometry></collision></link>
@@ -264,23 +286,9 @@ TEST(RequestFuzz, MutatedUrdfNeverCrashesTheSceneReader) {
   // urdfdom logs every parse error; thousands of them would bury the test output.
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
   Fuzzer fuzzer(99);
-  const std::string alphabet = "<>/=\" -.0123456789eEnaifNx\n";
   int readable = 0;
   for (int i = 0; i < 3000; ++i) {
-    std::string mutated = urdf;
-    for (int edits = fuzzer.integer(1, 4); edits > 0; --edits) {
-      const size_t at = fuzzer.integer(0, static_cast<int>(mutated.size()) - 1);
-      switch (fuzzer.integer(0, 2)) {
-        case 0:
-          mutated.erase(at, fuzzer.integer(1, 8));
-          break;
-        case 1:
-          mutated.insert(at, 1, alphabet[fuzzer.integer(0, alphabet.size() - 1)]);
-          break;
-        default:
-          mutated[at] = alphabet[fuzzer.integer(0, alphabet.size() - 1)];
-      }
-    }
+    const std::string mutated = mutatedXml(urdf, fuzzer);
     fesd::UrdfScene scene;
     ASSERT_NO_THROW(scene = fesd::sceneFromUrdf(mutated, fuzzer.chance(0.5))) << mutated;
     if (!scene.error.empty()) continue;
@@ -296,6 +304,54 @@ TEST(RequestFuzz, MutatedUrdfNeverCrashesTheSceneReader) {
     }
   }
   RecordProperty("urdf_readable", readable);
+}
+
+TEST(RequestFuzz, MutatedRobotUrdfNeverCrashesTheRobotReader) {
+  // A revolute arm of two spheres and a puck of two spheres on a floating joint of a fixed,
+  // offset table: every path of robotForScene.
+  const std::string urdf = R"(<robot name="r"><link name="world"/>
+    <link name="arm"><collision><origin xyz="0.2 0 0"/><geometry><sphere radius="0.1"/></geometry>
+      </collision><collision><origin xyz="0.4 0 0"/><geometry><sphere radius="0.1"/></geometry>
+      </collision></link>
+    <joint name="hinge" type="revolute"><parent link="world"/><child link="arm"/>
+      <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+    <link name="table"/>
+    <joint name="stand" type="fixed"><parent link="world"/><child link="table"/>
+      <origin xyz="0.5 0 0" rpy="0 0 0.3"/></joint>
+    <link name="puck"><collision><geometry><sphere radius="0.05"/></geometry></collision>
+      <collision><origin xyz="0.1 0 0"/><geometry><sphere radius="0.05"/></geometry></collision>
+    </link>
+    <joint name="loose" type="floating"><parent link="table"/><child link="puck"/>
+      <origin xyz="0.2 0.3 0"/></joint></robot>)";
+  const fesd::RobotForScene intact = fesd::robotForScene(urdf, fesd::PlanarChoice::kInferred);
+  ASSERT_EQ(intact.error, "");
+  ASSERT_EQ(intact.free_body_spheres.size(), 1u);
+  ASSERT_EQ(intact.free_body_spheres[0].size(), 2u);
+  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+  Fuzzer fuzzer(7);
+  int readable = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const std::string mutated = mutatedXml(urdf, fuzzer);
+    const fesd::PlanarChoice choice =
+        fuzzer.chance(0.5) ? fesd::PlanarChoice::kInferred : fesd::PlanarChoice::kSpatial;
+    fesd::RobotForScene read;
+    ASSERT_NO_THROW(read = fesd::robotForScene(mutated, choice)) << mutated;
+    if (!read.error.empty()) continue;
+    ++readable;
+    // What the reader accepts, the task judges: a message, or pairs with finite start gaps.
+    fesd::DiscScene discs(read.dimension);
+    discs.bodies() = read.free_bodies;
+    const fesd::RobotTask task(fesd::RobotScene(read.robot,
+                                                Eigen::VectorXd::Zero(read.robot->numCoordinates()),
+                                                discs, read.free_body_spheres));
+    if (!fesd::validateRobotTask(task, fesd::TaskLimits{}).empty()) continue;
+    for (const fesd::RobotPairDecision& decision : fesd::decideRobotPairs(task)) {
+      ASSERT_TRUE(std::isfinite(task.scene.pairGap(decision.pair, task.scene.initialState())))
+          << task.scene.pairName(decision.pair) << "\n"
+          << mutated;
+    }
+  }
+  RecordProperty("robot_urdf_readable", readable);
 }
 
 }  // namespace
