@@ -109,6 +109,7 @@ void applyHomotopyArguments(const Arguments& args, fesd::HomotopyOptions& option
   options.ipopt.cold_start_mu_strategy =
       args.text("cold-mu-strategy", options.ipopt.cold_start_mu_strategy);
   options.ipopt.print_level = args.integer("ipopt-print-level", options.ipopt.print_level);
+  options.ipopt.linear_solver = args.text("linear-solver", options.ipopt.linear_solver);
   for (const std::string& option : args.texts("ipopt", {})) {
     const size_t colon = option.find(':');
     if (colon == std::string::npos) throw std::invalid_argument("--ipopt takes name:value,...");

@@ -19,6 +19,7 @@ int replan(const Arguments& args);
 int planningSweep(const Arguments& args);
 int sweepAccuracy(const Arguments& args);
 int kkt(const Arguments& args);
+int kktSolvers(const Arguments& args);
 int robotPush(const Arguments& args);
 
 }  // namespace fesd_bench

@@ -35,6 +35,14 @@ const std::map<std::string, Command>& commands() {
         "--dump=PREFIX\n"
         "    --budget=600 and the homotopy/Ipopt options of ocp-manipulation "
         "(--ipopt=name:value)"}},
+      {"kkt-solvers",
+       {fesd_bench::kktSolvers,
+        "Our LDL^T against MUMPS: per scene the whole solve under each (status, iterations,\n"
+        "    objective, wall time; our analyses, factorisations and solves counted and timed),\n"
+        "    then the first --keep KKT matrices replayed through both (analysis, ms per\n"
+        "    factorisation and per solve, fill, inertia agreement).\n"
+        "    --scenes=default,ten_discs,all_pairs,panda --intervals=40 --keep=2 --repeats=3\n"
+        "    --budget=600"}},
       {"ocp-manipulation",
        {fesd_bench::ocpManipulation,
         "The collaborative manipulation OCP (Pozharskiy et al. 2024 Sec. IV-B), key=value per "

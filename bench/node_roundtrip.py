@@ -29,6 +29,13 @@ def default_scene():
     return PlanRequest()
 
 
+def default_unverified():
+    """The default scene without the verification of the default accuracy target."""
+    request = PlanRequest()
+    request.target_accuracy = -1.0
+    return request
+
+
 def far_body():
     """The default scene and one disc far out of reach: its pairs are pruned."""
     request = PlanRequest()
@@ -87,7 +94,8 @@ def target_inside_a_disc():
     return request
 
 
-CASES = {"default": default_scene, "far_body": far_body,
+CASES = {"default": default_scene, "default_unverified": default_unverified,
+         "far_body": far_body,
          "ten_discs_out_of_reach": ten_discs_out_of_reach, "ten_discs_in_reach": ten_discs_in_reach,
          "ten_discs_in_reach_all_pairs": ten_discs_in_reach_all_pairs,
          "disc_in_the_way": disc_in_the_way, "disc_in_the_way_to_1e-2": disc_in_the_way_to_1e_2,

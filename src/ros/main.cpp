@@ -10,9 +10,8 @@ int main(int argc, char** argv) {
   ros::NodeHandle node, private_node("~");
   try {
     fesd_ros::TrajoptNode trajopt(node, private_node);
-    // Requests are served concurrently; inside, Ipopt solves take turns (MUMPS is not
-    // thread-safe), each request with its own solver state.
-    ros::AsyncSpinner spinner(4);
+    // Requests are served concurrently, each with its own solver state.
+    ros::AsyncSpinner spinner(trajopt.solverThreads());
     spinner.start();
     ros::waitForShutdown();
   } catch (const std::exception& error) {

@@ -1,7 +1,9 @@
 #include "node_config.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <thread>
 
 #include <XmlRpcValue.h>
 
@@ -95,6 +97,14 @@ NodeConfig loadNodeConfig(const ros::NodeHandle& node) {
   if (c.robot_all_pairs_up_to < 0) {
     throw std::runtime_error("parameter robot_all_pairs_up_to must be >= 0");
   }
+  node.param("linear_solver", c.linear_solver, c.linear_solver);
+  if (c.linear_solver != "ldlt" && c.linear_solver != "mumps") {
+    throw std::runtime_error("parameter linear_solver must be ldlt or mumps, got '" +
+                             c.linear_solver + "'");
+  }
+  node.param("solver_threads", c.solver_threads, c.solver_threads);
+  if (c.solver_threads < 0) throw std::runtime_error("parameter solver_threads must be >= 0");
+  if (c.solver_threads == 0) c.solver_threads = std::max(1u, std::thread::hardware_concurrency());
   node.param("limits/max_bodies", c.limits.max_bodies, c.limits.max_bodies);
   node.param("limits/max_spheres", c.limits.max_spheres, c.limits.max_spheres);
   node.param("limits/max_obstacles", c.limits.max_obstacles, c.limits.max_obstacles);

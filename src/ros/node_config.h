@@ -41,6 +41,11 @@ struct NodeConfig {
   /// in reach still models them all (lazy rounds can end in other local optima, and few pairs
   /// are cheap); more (a Panda's 118) are lazy.
   int robot_all_pairs_up_to = 32;
+  /// ~linear_solver: the KKT solve behind Ipopt, "ldlt" (ours; solves run in parallel) or
+  /// "mumps" (Debian's Ipopt's own; one solve at a time in the process).
+  std::string linear_solver = "ldlt";
+  /// ~solver_threads: requests (services and action goals) solved at once; 0: one per core.
+  int solver_threads = 0;
   fesd::TaskLimits limits;
   std::map<std::string, BodyConfig> bodies;
   std::string scene_urdf;  ///< ~scene_urdf: the default scene

@@ -23,14 +23,14 @@ ros::NodeHandle onQueue(ros::NodeHandle node, ros::CallbackQueue* queue) {
 
 }  // namespace
 
-PlanActionServer::PlanActionServer(const ros::NodeHandle& private_node, Plan plan)
+PlanActionServer::PlanActionServer(const ros::NodeHandle& private_node, int workers, Plan plan)
     : plan_(std::move(plan)),
       node_(onQueue(private_node, &callbacks_)),
       server_(
           node_, "plan", [this](GoalHandle goal) { receive(goal); },
           [this](GoalHandle goal) { cancel(goal); }, false),
       spinner_(1, &callbacks_) {
-  worker_ = std::thread([this] { work(); });
+  for (int w = 0; w < workers; ++w) workers_.emplace_back([this] { work(); });
 }
 
 PlanActionServer::~PlanActionServer() {
@@ -38,14 +38,14 @@ PlanActionServer::~PlanActionServer() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stopping_ = true;
-    cancel_running_ = true;
+    for (auto& [id, cancel] : running_) *cancel = true;
     for (GoalHandle& goal : queue_) {
       goal.setAborted(unsolved(fesd_trajopt::Solution::CANCELLED, "the node is shutting down"));
     }
     queue_.clear();
   }
   wake_.notify_all();
-  worker_.join();
+  for (std::thread& worker : workers_) worker.join();
 }
 
 void PlanActionServer::start() {
@@ -63,8 +63,9 @@ void PlanActionServer::receive(GoalHandle goal) {
 
 void PlanActionServer::cancel(GoalHandle goal) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (goal.getGoalID().id == running_) {
-    cancel_running_ = true;  // the worker ends it with the best iterate
+  const auto running = running_.find(goal.getGoalID().id);
+  if (running != running_.end()) {
+    *running->second = true;  // its worker ends it with the best iterate
     return;
   }
   for (auto queued = queue_.begin(); queued != queue_.end(); ++queued) {
@@ -82,6 +83,7 @@ void PlanActionServer::cancel(GoalHandle goal) {
 void PlanActionServer::work() {
   while (true) {
     GoalHandle goal;
+    auto cancel = std::make_shared<std::atomic<bool>>(false);
     {
       std::unique_lock<std::mutex> lock(mutex_);
       wake_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
@@ -93,27 +95,26 @@ void PlanActionServer::work() {
             unsolved(fesd_trajopt::Solution::CANCELLED, "cancelled before it started"));
         continue;
       }
-      running_ = goal.getGoalID().id;
-      cancel_running_ = false;
+      running_[goal.getGoalID().id] = cancel;
     }
     try {
-      run(goal);
+      run(goal, *cancel);
     } catch (...) {
       // plan_ answers errors itself; this is actionlib or memory failing: end the goal anyway.
       ROS_ERROR_STREAM("fesd_trajopt: plan goal " << goal.getGoalID().id << " failed unexpectedly");
       goal.setAborted(unsolved(fesd_trajopt::Solution::SOLVER_ERROR, "internal error"));
     }
     std::lock_guard<std::mutex> lock(mutex_);
-    running_.clear();
+    running_.erase(goal.getGoalID().id);
   }
 }
 
-void PlanActionServer::run(GoalHandle& goal) {
+void PlanActionServer::run(GoalHandle& goal, const std::atomic<bool>& cancel) {
   goal.setAccepted("solving");
   const fesd::Stopwatch elapsed;
   fesd_trajopt::PlanTrajectoryFeedback feedback;
   fesd::SolveMonitor monitor;
-  monitor.cancel = &cancel_running_;
+  monitor.cancel = &cancel;
   monitor.on_step = [&](const fesd::HomotopyStep& step) {
     ++feedback.homotopy_step;
     feedback.sigma = step.sigma;

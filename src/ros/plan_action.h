@@ -4,9 +4,12 @@
 #include <condition_variable>
 #include <deque>
 #include <functional>
+#include <map>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <actionlib/server/action_server.h>
 #include <fesd_trajopt/PlanTrajectoryAction.h>
@@ -18,20 +21,21 @@
 
 namespace fesd_ros {
 
-/// The ~plan action. Goals queue and run one after the other in a worker thread, so a new goal
-/// never touches the one in progress. Feedback follows every relaxed NLP; cancelling the running
-/// goal stops its solve at the next Ipopt iteration (a verification re-simulation in progress
-/// finishes first) and ends it PREEMPTED with the best iterate; cancelling a queued goal ends it
-/// RECALLED without a solve. The action's callbacks have their own queue and thread, so cancels
-/// are taken even while every spinner thread of the node serves a long service call.
+/// The ~plan action. Goals queue and run on `workers` threads, each goal with its own solve, so a
+/// new goal never touches one in progress. Feedback follows every relaxed NLP; cancelling a
+/// running goal stops its solve at the next Ipopt iteration (a verification re-simulation in
+/// progress finishes first) and ends it PREEMPTED with the best iterate; cancelling a queued
+/// goal ends it RECALLED without a solve. The action's callbacks have their own queue and
+/// thread, so cancels are taken even while every spinner thread of the node serves a long
+/// service call.
 class PlanActionServer {
  public:
   /// Solves a request, watched by the monitor, into the result (status, message, solution).
   using Plan = std::function<void(const fesd_trajopt::PlanRequest&, const fesd::SolveMonitor&,
                                   fesd_trajopt::PlanTrajectoryResult&)>;
 
-  PlanActionServer(const ros::NodeHandle& private_node, Plan plan);
-  /// Cancels the running goal and aborts the queued ones.
+  PlanActionServer(const ros::NodeHandle& private_node, int workers, Plan plan);
+  /// Cancels the running goals and aborts the queued ones.
   ~PlanActionServer();
   PlanActionServer(const PlanActionServer&) = delete;
   PlanActionServer& operator=(const PlanActionServer&) = delete;
@@ -46,7 +50,7 @@ class PlanActionServer {
   void receive(GoalHandle goal);
   void cancel(GoalHandle goal);
   void work();
-  void run(GoalHandle& goal);
+  void run(GoalHandle& goal, const std::atomic<bool>& cancel);
 
   Plan plan_;
   ros::CallbackQueue callbacks_;
@@ -56,10 +60,10 @@ class PlanActionServer {
   std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<GoalHandle> queue_;
-  std::string running_;  ///< goal id of the goal being solved; "" when idle
-  std::atomic<bool> cancel_running_{false};
+  /// The goals being solved, by goal id, each with the flag that cancels it.
+  std::map<std::string, std::shared_ptr<std::atomic<bool>>> running_;
   bool stopping_ = false;
-  std::thread worker_;
+  std::vector<std::thread> workers_;
 };
 
 }  // namespace fesd_ros

@@ -82,6 +82,7 @@ std::string solveOptions(const fesd_trajopt::PlanRequest& request, const NodeCon
           : request.method == fesd_trajopt::PlanRequest::METHOD_FESD;
   options.homotopy.complementarity_tolerance = tolerance;
   options.homotopy.wall_time_budget = budget;
+  options.homotopy.ipopt.linear_solver = config.linear_solver;
   return "";
 }
 
@@ -138,9 +139,10 @@ TrajoptNode::TrajoptNode(ros::NodeHandle node, ros::NodeHandle private_node)
     : node_(node),
       private_node_(private_node),
       config_(loadNodeConfig(private_node)),
+      slots_(config_.solver_threads),
       playback_(private_node, config_.playback_rate, kPlaybackFramesPerSecond),
       plan_server_(
-          private_node,
+          private_node, config_.solver_threads,
           [this](const fesd_trajopt::PlanRequest& request, const fesd::SolveMonitor& monitor,
                  fesd_trajopt::PlanTrajectoryResult& answer) { plan(request, &monitor, answer); }) {
   marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
@@ -174,6 +176,7 @@ bool TrajoptNode::solveTrajectory(fesd_trajopt::SolveTrajectory::Request& reques
 
 bool TrajoptNode::simulate(fesd_trajopt::Simulate::Request& request,
                            fesd_trajopt::Simulate::Response& response) {
+  const SolveSlots::Slot slot(slots_);
   answerCatchingErrors("simulate", response, [&] { handleSimulate(request, response); });
   fesd::releaseFreeMemory();
   return true;
@@ -181,6 +184,7 @@ bool TrajoptNode::simulate(fesd_trajopt::Simulate::Request& request,
 
 void TrajoptNode::plan(const fesd_trajopt::PlanRequest& request, const fesd::SolveMonitor* monitor,
                        fesd_trajopt::PlanTrajectoryResult& answer) {
+  const SolveSlots::Slot slot(slots_);
   answerCatchingErrors("plan", answer, [&] { handlePlan(request, monitor, answer); });
   fesd::releaseFreeMemory();  // the heap keeps what the solve freed until trimmed
 }
@@ -292,6 +296,8 @@ void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
   options.discretization.num_elements = grid.elements;
   options.discretization.num_stages = grid.stages;
   options.wall_time_budget = wallTimeBudget(request, config_);
+  options.homotopy.ipopt.linear_solver = config_.linear_solver;
+  options.retry_homotopy.ipopt.linear_solver = config_.linear_solver;
   if (!(options.wall_time_budget > 0.0))
     return refuse(response, "the wall-time budget must be > 0");
   const int steps =

@@ -18,6 +18,7 @@
 #include "node_config.h"
 #include "plan_action.h"
 #include "playback.h"
+#include "solve_slots.h"
 
 namespace fesd_ros {
 
@@ -25,12 +26,15 @@ namespace fesd_ros {
 /// same request as ~solve_trajectory, with progress and cancel); latched ~markers
 /// (visualization_msgs/MarkerArray), ~solution (fesd_trajopt/Solution) and ~paths/<body>
 /// (nav_msgs/Path) topics; ~playback, the last solution's motion; a static transform that makes
-/// ~frame_id exist for rviz. Requests are served concurrently, each with its own solver; their
-/// Ipopt solves take turns (the core serialises them, MUMPS not being thread-safe). The last
-/// solution of its NLP, of a disc or a robot scene, is kept for warm starts.
+/// ~frame_id exist for rviz. Requests are served concurrently, up to ~solver_threads at once,
+/// each with its own solver (with ~linear_solver mumps their Ipopt solves take turns: MUMPS is
+/// not thread-safe). The last solution of its NLP, of a disc or a robot scene, is kept for warm
+/// starts.
 class TrajoptNode {
  public:
   TrajoptNode(ros::NodeHandle node, ros::NodeHandle private_node);
+  /// Threads the node's services should be spun with: one per request solved at once.
+  int solverThreads() const { return config_.solver_threads; }
 
  private:
   bool solveTrajectory(fesd_trajopt::SolveTrajectory::Request& request,
@@ -58,6 +62,7 @@ class TrajoptNode {
 
   ros::NodeHandle node_, private_node_;
   NodeConfig config_;
+  SolveSlots slots_;
   ros::ServiceServer solve_service_, simulate_service_;
   ros::Publisher marker_publisher_, solution_publisher_;
   std::map<std::string, ros::Publisher> path_publishers_;  ///< by body name, latched

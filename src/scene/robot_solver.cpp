@@ -260,7 +260,7 @@ RobotOutcome solveRobotTask(const RobotTask& task, const TaskLimits& limits,
   judgeTargets(task, outcome);
   if (options.verify && outcome.status != SolveStatus::kCancelled) {
     const SimulationOptions fine =
-        verificationOptions(options.verification, options.ocp.discretization,
+        verificationOptions(options.verification, options.ocp,
                             options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
     verifyRobotPlan(task, candidates, fine, options.pair_margin, outcome);
   }

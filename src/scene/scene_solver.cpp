@@ -282,7 +282,7 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
   judgeTargets(task, outcome, plan);
   if (options.verify && outcome.status != SolveStatus::kCancelled) {
     const SimulationOptions fine =
-        verificationOptions(options.verification, options.ocp.discretization,
+        verificationOptions(options.verification, options.ocp,
                             options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
     outcome.verified = true;
     outcome.verification_error = verifyOutcome(task, outcome, fine, options.pair_margin).error;
@@ -291,10 +291,12 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
 }
 
 SimulationOptions verificationOptions(const DiscretizationOptions& configured,
-                                      const DiscretizationOptions& solved,
-                                      double remaining_budget) {
+                                      const OcpOptions& solve, double remaining_budget) {
+  const DiscretizationOptions& solved = solve.discretization;
   SimulationOptions fine;
   fine.discretization = configured;
+  fine.homotopy.ipopt.linear_solver = solve.homotopy.ipopt.linear_solver;
+  fine.retry_homotopy.ipopt.linear_solver = solve.homotopy.ipopt.linear_solver;
   // The reference must be finer than the solve, or its own error is what gets measured (the
   // configured n_s = 3, N_FE = 6 showed 1.4e-6 against n_s = 4 solves of any N_FE).
   fine.discretization.num_stages = std::max(fine.discretization.num_stages, solved.num_stages);

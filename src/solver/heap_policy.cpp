@@ -5,14 +5,13 @@
 namespace fesd {
 
 void keepLargeAllocationsInTheHeap() {
-  constexpr int kLargest = 1 << 30;  // bytes: MUMPS' workspaces stay below it
-  mallopt(M_ARENA_MAX, 1);           // solves run in worker threads: one heap for all of them
+  constexpr int kLargest = 1 << 30;  // bytes: factors and fronts stay below it
   mallopt(M_MMAP_THRESHOLD, kLargest);
   mallopt(M_TRIM_THRESHOLD, kLargest);
 }
 
-void releaseFreeMemory() {
-  malloc_trim(0);
+void releaseFreeMemory(std::size_t keep_bytes) {
+  if (mallinfo2().fordblks > keep_bytes) malloc_trim(0);
 }
 
 }  // namespace fesd

@@ -1,5 +1,7 @@
 #include "ipopt_session.h"
 
+#include "ipopt_linear_solver.h"
+
 #include <dlfcn.h>
 
 #include <chrono>
@@ -242,19 +244,8 @@ bool setOption(Ipopt::OptionsList& options, const std::string& name, const std::
   return options.SetStringValue(name, value);
 }
 
-}  // namespace
-
-IpoptSession::IpoptSession(const IpoptSettings& settings)
-    : settings_(settings), application_(IpoptApplicationFactory()) {
-  Ipopt::OptionsList& options = *application_->Options();
-  options.SetStringValue("sb", "yes");
-  options.SetIntegerValue("print_level", settings.print_level);
-  options.SetNumericValue("acceptable_tol", settings.acceptable_tolerance);
-  options.SetIntegerValue("max_iter", settings.max_iterations);
-  options.SetStringValue("linear_solver", settings.linear_solver);
-  options.SetStringValue("hessian_approximation", "exact");
-  // Complementarity products must be resolved far below Ipopt's default bound relaxation (1e-8).
-  options.SetNumericValue("bound_relax_factor", 0.0);
+/// MUMPS' options, where it is the linear solver.
+void setMumpsOptions(Ipopt::OptionsList& options) {
   // MUMPS orders the KKT matrix by its graph alone (SCOTCH nested dissection), not through a
   // matching on the values of each NLP's first KKT matrix (Ipopt's default ICNTL(6) = 7, then
   // MUMPS' automatic compressed AMF ordering). On the 44-pair scene (26352 variables) the
@@ -268,6 +259,39 @@ IpoptSession::IpoptSession(const IpoptSettings& settings)
   // 46 ms per factorization instead of 19 ms. With SCOTCH the factors exceeded the estimate by
   // at most 22 % (no "more memory" refactorization in any run measured).
   options.SetIntegerValue("mumps_mem_percent", 100);
+}
+
+/// MUMPS keeps module-level state (its load balancing, dmumps_load): two solves in parallel
+/// threads of one process crashed there, and so did one thread's solve while another ended its
+/// MUMPS instance (destroying an Ipopt application ends the last one). Everything that runs
+/// MUMPS takes this lock.
+std::mutex& mumpsLock() {
+  static std::mutex lock;
+  return lock;
+}
+
+}  // namespace
+
+IpoptSession::IpoptSession(const IpoptSettings& settings)
+    : settings_(settings), uses_mumps_(settings.linear_solver == "mumps") {
+  if (settings.linear_solver == kLdltSolver) registerLdltAsMa97();
+  application_ = IpoptApplicationFactory();
+  Ipopt::OptionsList& options = *application_->Options();
+  options.SetStringValue("sb", "yes");
+  options.SetIntegerValue("print_level", settings.print_level);
+  options.SetNumericValue("acceptable_tol", settings.acceptable_tolerance);
+  options.SetIntegerValue("max_iter", settings.max_iterations);
+  options.SetStringValue("hessian_approximation", "exact");
+  // Complementarity products must be resolved far below Ipopt's default bound relaxation (1e-8).
+  options.SetNumericValue("bound_relax_factor", 0.0);
+  if (settings.linear_solver == kLdltSolver) {
+    // Ours answers under MA97's name; MA97's own scaling is not ours to offer.
+    options.SetStringValue("linear_solver", "ma97");
+    options.SetStringValue("ma97_scaling", "none");
+  } else {
+    options.SetStringValue("linear_solver", settings.linear_solver);
+  }
+  if (uses_mumps_) setMumpsOptions(options);
 
   for (const auto& [name, value] : settings.extra_options) {
     if (!setOption(options, name, value)) {
@@ -307,11 +331,11 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
   Ipopt::SmartPtr<TnlpAdapter> adapter =
       new TnlpAdapter(problem, point, solve_settings.deadline_seconds, solve_settings.cancel);
   NlpOutcome outcome;
-  // MUMPS keeps module-level state (its load balancing, dmumps_load): two solves in parallel
-  // threads of one process crashed there. Solves in different threads take turns.
-  static std::mutex mumps;
-  std::lock_guard<std::mutex> one_solve_at_a_time(mumps);
-  resetScotchRandom();
+  std::unique_lock<std::mutex> mumps_turn;
+  if (uses_mumps_) {
+    mumps_turn = std::unique_lock<std::mutex>(mumpsLock());
+    resetScotchRandom();
+  }
   try {
     outcome.status = application_->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(GetRawPtr(adapter)));
   } catch (const std::exception&) {
@@ -327,6 +351,12 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
     outcome.objective = application_->Statistics()->FinalObjective();
   }
   return outcome;
+}
+
+IpoptSession::~IpoptSession() {
+  if (!uses_mumps_) return;
+  std::lock_guard<std::mutex> mumps_turn(mumpsLock());
+  application_ = nullptr;  // ends the application's MUMPS instance, if it made one
 }
 
 bool IpoptSession::converged(Ipopt::ApplicationReturnStatus status) {

@@ -28,6 +28,9 @@ struct NlpOutcome {
 class IpoptSession {
  public:
   explicit IpoptSession(const IpoptSettings& settings);
+  ~IpoptSession();
+  IpoptSession(const IpoptSession&) = delete;
+  IpoptSession& operator=(const IpoptSession&) = delete;
 
   /// What may change from one solve to the next.
   struct SolveSettings {
@@ -49,6 +52,7 @@ class IpoptSession {
 
  private:
   IpoptSettings settings_;
+  bool uses_mumps_;
   Ipopt::SmartPtr<Ipopt::IpoptApplication> application_;
 };
 

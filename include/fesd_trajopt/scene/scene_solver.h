@@ -91,9 +91,10 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
                             const SceneSolveOptions& options);
 
 /// The grid a plan is verified on: the configured one, but at least the solve's stages and twice
-/// its elements; within the budget left (none when the solve used it all).
+/// its elements; with the solve's linear solver, within the budget left (none when the solve used
+/// it all).
 SimulationOptions verificationOptions(const DiscretizationOptions& configured,
-                                      const DiscretizationOptions& solved, double remaining_budget);
+                                      const OcpOptions& solve, double remaining_budget);
 
 /// A solution's controls re-simulated on a finer grid, in the full scene, as if every pair in
 /// reach (the outcome's modelled and checked pairs) were modelled: the verification of

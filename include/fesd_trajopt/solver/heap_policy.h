@@ -1,18 +1,21 @@
 #pragma once
 
+#include <cstddef>
+
 namespace fesd {
 
 /// For programs that solve large NLPs (the node, the benches, the tests), not for a library's
-/// users to have imposed: keeps large allocations in one process heap instead of fresh memory
-/// maps. MUMPS allocates its workspace anew for every factorisation; from a fresh map each time
-/// every touched page faults (~12 us each on this machine's virtual machine), which doubled the
-/// time of a 26352-variable solve (results.md, "The per-iteration cost"). One arena, no maps
-/// below 1 GiB and no automatic trimming: freed blocks are reused by the next factorisation.
-/// Call releaseFreeMemory() when a piece of work ends, or the heap keeps its peak size.
+/// users to have imposed: keeps large allocations in the process heap instead of fresh memory
+/// maps, and never trims it on its own. Freed blocks are then reused by the next NLP without
+/// faulting their pages in again (~12 us per page on this machine's virtual machine; fresh maps
+/// doubled a 26352-variable solve under MUMPS, results.md). Call releaseFreeMemory() when a
+/// piece of work ends.
 void keepLargeAllocationsInTheHeap();
 
-/// Returns the heap's free pages to the system (malloc_trim): after a request, so that a
-/// program's memory goes back to about its idle size.
-void releaseFreeMemory();
+/// Returns the heap's free pages to the system (malloc_trim) once more than `keep_bytes` are
+/// free: after a large request the program goes back to about its idle size, while the pages
+/// of small requests stay mapped for the next (trimming after every default request cost it
+/// about 60 ms of page faults in the next one).
+void releaseFreeMemory(std::size_t keep_bytes = std::size_t{256} << 20);
 
 }  // namespace fesd

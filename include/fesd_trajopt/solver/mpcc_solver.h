@@ -12,6 +12,9 @@
 
 namespace fesd {
 
+/// The name of our own sparse LDL^T as IpoptSettings::linear_solver.
+inline const char* const kLdltSolver = "ldlt";
+
 /// Options passed to Ipopt for every relaxed NLP.
 struct IpoptSettings {
   double tolerance = 1e-10;
@@ -25,7 +28,9 @@ struct IpoptSettings {
   /// Barrier strategy of a cold start (the first relaxed NLP): "adaptive" needed about 40 %
   /// fewer iterations on the manipulation OCP.
   std::string cold_start_mu_strategy = "adaptive";
-  std::string linear_solver = "mumps";
+  /// kLdltSolver (ours: multifrontal LDL^T, state per solve, solves in parallel threads) or
+  /// "mumps" (Debian's Ipopt's own; one solve per process at a time).
+  std::string linear_solver = kLdltSolver;
   /// A warm-started homotopy step starts at the previous solution with its multipliers, pushed
   /// off the bounds by only this much, and with Ipopt's mu_init = warm_start_mu_factor * sigma:
   /// a barrier parameter consistent with that point, so Ipopt does not re-centre far away.
@@ -202,7 +207,7 @@ struct PrimalDualPoint;
 /// Solves a RelaxedMpcc by the homotopy, each NLP by Ipopt with exact sparse derivatives,
 /// warm-started from the previous one. A solver keeps one Ipopt application and can be reused
 /// for many problems; it is not thread-safe (use one per thread). Solvers in different threads
-/// run their Ipopt solves one at a time: MUMPS is not thread-safe.
+/// solve in parallel with our LDL^T; with MUMPS (not thread-safe) their solves take turns.
 class MpccSolver {
  public:
   explicit MpccSolver(HomotopyOptions options = {});
