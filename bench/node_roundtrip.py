@@ -6,7 +6,10 @@ bench/node_roundtrip.sh, which does both. Prints one line of key=value pairs per
 peak resident memory (VmHWM) only grows, so run the cases in the order of interest.
 """
 import argparse
+import random
+import statistics
 import sys
+import threading
 import time
 import xmlrpc.client
 
@@ -113,39 +116,109 @@ def node_memory_mib():
     return (int(fields["VmHWM"].split()[0]) / 1024.0, int(fields["VmRSS"].split()[0]) / 1024.0)
 
 
+def describe(case, run, response, round_trip):
+    stats = response.solution.statistics
+    peak, resident = node_memory_mib()
+    missed = [b.target_distance for b in response.solution.bodies
+              if b.target_distance == b.target_distance]  # NaN: no target
+    print("case=%s run=%d status=%d bodies=%d modelled_pairs=%d checked_pairs=%d "
+          "pruned_pairs=%d pair_rounds=%d nlp_variables=%d complementarities=%d "
+          "ipopt_iterations=%d objective=%.7g warm_started=%d rungs=%d solve_s=%.3f "
+          "round_trip_s=%.3f verification_error=%.3g target_distance=%.3g node_peak_mib=%.1f "
+          "node_rss_mib=%.1f" % (
+              case, run, response.status, len(response.solution.bodies),
+              len(response.solution.modeled_pairs), len(response.solution.checked_pairs),
+              len(response.solution.pruned_pairs), stats.pair_rounds,
+              stats.nlp_variables, stats.complementarity_constraints,
+              stats.ipopt_iterations, stats.objective, stats.warm_started,
+              len(response.solution.refinements), stats.wall_time, round_trip,
+              response.solution.verification_error if response.solution.verified
+              else float("nan"), max(missed, default=float("nan")), peak, resident))
+    sys.stdout.flush()
+
+
+def warm_sequence(solve, count, seed):
+    """A cold default request, then `count` warm ones, each moving the object's target to a
+    random x within 0.3 of the default's (seeded); prints each and the medians."""
+    rng = random.Random(seed)
+    started = time.monotonic()
+    cold = solve(PlanRequest())
+    cold_s = time.monotonic() - started
+    describe("cold", 0, cold, cold_s)
+    times, successes, warm = [], 0, 0
+    for run in range(count):
+        request = object_target(rng.uniform(-0.3, 0.3), 10.0)
+        request.warm_start = True
+        started = time.monotonic()
+        response = solve(request)
+        round_trip = time.monotonic() - started
+        describe("warm", run, response, round_trip)
+        times.append(round_trip)
+        successes += response.status == 0
+        warm += response.solution.statistics.warm_started
+    print("warm_sequence requests=%d success=%d warm_started=%d median_round_trip_s=%.3f "
+          "max_round_trip_s=%.3f cold_round_trip_s=%.3f median_over_cold=%.3f" % (
+              count, successes, warm, statistics.median(times), max(times), cold_s,
+              statistics.median(times) / cold_s))
+
+
+def together(count, cases):
+    """`count` requests of the cases (cycled) sent at once, each on its own connection, then the
+    same one after the other: wall times and whether the answers are identical."""
+    requests = [CASES[cases[i % len(cases)]]() for i in range(count)]
+    answers = [None] * count
+
+    def call(i):
+        answers[i] = rospy.ServiceProxy(NODE + "/solve_trajectory", SolveTrajectory)(requests[i])
+
+    threads = [threading.Thread(target=call, args=(i,)) for i in range(count)]
+    started = time.monotonic()
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    at_once = time.monotonic() - started
+    solve = rospy.ServiceProxy(NODE + "/solve_trajectory", SolveTrajectory)
+    started = time.monotonic()
+    alone = [solve(request) for request in requests]
+    in_sequence = time.monotonic() - started
+    identical = sum(a.status == b.status and a.solution.states == b.solution.states and
+                    a.solution.statistics.ipopt_iterations == b.solution.statistics.ipopt_iterations
+                    for a, b in zip(answers, alone))
+    print("together requests=%d cases=%s at_once_s=%.3f in_sequence_s=%.3f ratio=%.3f "
+          "identical=%d statuses=%s" % (count, ",".join(cases), at_once, in_sequence,
+                                        at_once / in_sequence, identical,
+                                        ",".join(str(a.status) for a in answers)))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cases", default="default,far_body,ten_discs_out_of_reach",
                         help="comma-separated, from: " + ", ".join(CASES))
     parser.add_argument("--repeat", type=int, default=1)
     parser.add_argument("--verify", action="store_true", help="set verify in every request")
+    parser.add_argument("--warm-sequence", type=int, default=0,
+                        help="then a cold default request and this many warm replans")
+    parser.add_argument("--together", type=int, default=0,
+                        help="then this many requests of --cases at once, and in sequence")
+    parser.add_argument("--seed", type=int, default=1)
     args = parser.parse_args(rospy.myargv()[1:])
     rospy.init_node("fesd_trajopt_roundtrip_bench", anonymous=True)
     rospy.wait_for_service(NODE + "/solve_trajectory", timeout=60.0)
     solve = rospy.ServiceProxy(NODE + "/solve_trajectory", SolveTrajectory)
-    for case in args.cases.split(","):
+    cases = args.cases.split(",") if args.cases else []
+    if args.together:
+        together(args.together, cases)
+        return 0
+    for case in cases:
         for run in range(args.repeat):
             started = time.monotonic()
             request = CASES[case]()
             request.verify = args.verify
             response = solve(request)
-            round_trip = time.monotonic() - started
-            stats = response.solution.statistics
-            peak, resident = node_memory_mib()
-            missed = [b.target_distance for b in response.solution.bodies
-                      if b.target_distance == b.target_distance]  # NaN: no target
-            print("case=%s run=%d status=%d bodies=%d modelled_pairs=%d checked_pairs=%d "
-                  "pruned_pairs=%d pair_rounds=%d nlp_variables=%d complementarities=%d "
-                  "ipopt_iterations=%d objective=%.7g solve_s=%.3f round_trip_s=%.3f "
-                  "verification_error=%.3g target_distance=%.3g node_peak_mib=%.1f node_rss_mib=%.1f" % (
-                      case, run, response.status, len(response.solution.bodies),
-                      len(response.solution.modeled_pairs), len(response.solution.checked_pairs),
-                      len(response.solution.pruned_pairs), stats.pair_rounds,
-                      stats.nlp_variables, stats.complementarity_constraints,
-                      stats.ipopt_iterations, stats.objective, stats.wall_time, round_trip,
-                      response.solution.verification_error if response.solution.verified
-                      else float("nan"), max(missed, default=float("nan")), peak, resident))
-            sys.stdout.flush()
+            describe(case, run, response, time.monotonic() - started)
+    if args.warm_sequence:
+        warm_sequence(solve, args.warm_sequence, args.seed)
     return 0
 
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstddef>
+#include <cstring>
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -119,6 +120,27 @@ void guarded(Info* info, Call call) {
 
 }  // namespace
 
+/// Ipopt's Ma97SolverInterface (3.11.9, and 3.14 still) sets its count of negative pivots,
+/// numneg_, only after a successful solve, but reads it after a factorisation with the wrong
+/// inertia to choose its correction (fewer negative eigenvalues than constraints: a
+/// rank-deficient Jacobian, delta_c; more: delta_x). Before the first solve of an NLP that is
+/// uninitialised heap memory, and then a stale count: the same request took other corrections in
+/// other runs of the node (different answers, seen in the load test). The interface hands
+/// ma97_factor its own members &akeep_ and val_; in 3.11.9's layout (int ndim_; double* val_;
+/// int numneg_; int numdelay_; void* akeep_, with ndim_ in its base class' tail padding) numneg_
+/// sits 8 bytes before akeep_. Only when ndim_ and val_ are found where that layout puts them is
+/// the factorisation's count written there, as a fixed Ipopt would have it.
+bool tellIpoptTheInertia(void** akeep, const double* val, int dimension, int negative) {
+  char* akeep_member = reinterpret_cast<char*>(akeep);
+  const double* val_member;
+  int ndim_member;
+  std::memcpy(&val_member, akeep_member - 16, sizeof val_member);
+  std::memcpy(&ndim_member, akeep_member - 20, sizeof ndim_member);
+  if (val_member != val || ndim_member != dimension) return false;  // not the layout we know
+  std::memcpy(akeep_member - 8, &negative, sizeof negative);
+  return true;
+}
+
 void defaultControl(Control* control) {
   *control = Control{};
   control->action = 1;
@@ -180,6 +202,8 @@ void factor(int, const int ptr[], const int row[], const double val[], void** ak
     info->num_two = report.two_by_two;
     info->num_neg = report.negative;
     info->flag = !report.finite ? kNonFinite : report.zero > 0 ? kSingular : kSuccess;
+    const bool told =
+        tellIpoptTheInertia(akeep, val, analysis.symbolic->dimension(), report.negative);
     if (report.zero > 0) info->matrix_rank = analysis.symbolic->dimension() - report.zero;
     if (control->scaling > 0 && scale != nullptr) {
       // Ipopt keeps and hands back the scaling MA97 computed; ours is the identity.
@@ -192,6 +216,7 @@ void factor(int, const int ptr[], const int row[], const double val[], void** ak
       ++totals.factorisations;
       totals.factor_seconds += clock.seconds();
       totals.delayed_pivots += report.delayed;
+      totals.inertia_told += told;
       totals.two_by_two_pivots += report.two_by_two;
       const linalg::SupernodalAnalysis& symbolic = *analysis.symbolic;
       if (symbolic.dimension() > totals.largest_dimension) {

@@ -45,6 +45,10 @@ void factorSolve(int matrix_type, const int ptr[], const int row[], const double
 void solve(int job, int nrhs, double* x, int ldx, void** akeep, void** fkeep,
            const Control* control, Info* info);
 void finalise(void** akeep, void** fkeep);
+/// Writes a factorisation's count of negative pivots into the Ipopt interface object that owns
+/// `akeep` (its numneg_, which Ipopt reads after a wrong inertia but sets only after a solve),
+/// if the members beside it are where Ipopt 3.11.9's layout puts them; true if written.
+bool tellIpoptTheInertia(void** akeep, const double* val, int dimension, int negative);
 void freeAkeep(void** akeep);
 
 }  // namespace ma97

@@ -215,6 +215,7 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
       report.objective = outcome.objective;
       report.complementarity_residual = residual;
       report.polished = true;
+      report.polish_sigma = problem.relaxation();
       report.b_stationary = stationary;
       return;
     }
@@ -267,6 +268,9 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
     settings.warm_start_mu = options_.ipopt.previous_solution_mu;
     settings.warm_start_bound_push = options_.ipopt.previous_solution_bound_push;
     settings.tolerance = options_.ipopt.tolerance;
+    // The objective the previous solution was polished with: its vanishing terms' weight.
+    problem.setVanishingTermsWeight(options_.vanishing_terms_weight);
+    problem.setRelaxation(previous.polish_sigma);
     polish(*session_, options_, problem, point, options_.complementarity_tolerance, settings,
            options_.polish_attempts, true, monitor_, report);
     if (polishedToTolerance(report, options_)) {

@@ -39,17 +39,22 @@ TEST(Replanning, AWarmStartAfterATargetMovedConvergesInFewerIterationsThanACold)
   const fesd::SceneOutcome first = solvedShowcase();
   fesd::SceneSolveOptions warm_options = showcaseOptions();
   warm_options.previous = &first;
+  warm_options.verify = true;
   const fesd::SceneOutcome warm = fesd::solveSceneTask(movedTarget(0.3), kLimits, warm_options);
-  const fesd::SceneOutcome cold =
-      fesd::solveSceneTask(movedTarget(0.3), kLimits, showcaseOptions());
+  fesd::SceneSolveOptions cold_options = showcaseOptions();
+  cold_options.verify = true;
+  const fesd::SceneOutcome cold = fesd::solveSceneTask(movedTarget(0.3), kLimits, cold_options);
   ASSERT_EQ(warm.status, fesd::SolveStatus::kSuccess) << warm.message;
   ASSERT_EQ(cold.status, fesd::SolveStatus::kSuccess) << cold.message;
   EXPECT_EQ(warm.start, fesd::OcpStart::kPrevious);
   EXPECT_TRUE(warm.cold_start_reason.empty()) << warm.cold_start_reason;
   EXPECT_EQ(warm.report.complementarity_residual, 0.0);  // polished: exact complementarity
-  // 15 against 46 iterations measured: a nearby local optimum, within 0.1 % of the cold one.
+  // 13 against 46 iterations measured: a nearby local optimum, 0.2 % above the cold one, and as
+  // accurate as the plans the showcase's default grid gives (2.5e-3; the cold one 6.9e-3). A warm
+  // polish that dropped the step regulariser found a plan within 0.1 % but 1.4e-2 off.
   EXPECT_LT(warm.report.iterations, cold.report.iterations / 2);
-  EXPECT_NEAR(warm.report.objective, cold.report.objective, 1e-3 * cold.report.objective);
+  EXPECT_NEAR(warm.report.objective, cold.report.objective, 5e-3 * cold.report.objective);
+  EXPECT_LT(warm.verification_error, 5e-3);
   const Eigen::VectorXd end = warm.trajectory.finalState();
   const int object = 2;  // actuator_1, actuator_2, object: the object's position last
   EXPECT_NEAR(end(2 * object), 0.3, 0.05);

@@ -114,6 +114,31 @@ TEST(MpccSolver, SmoothProblemIsSolvedOnceWithoutHomotopy) {
   EXPECT_NEAR(report.solution[1], -4.0, 1e-8);
 }
 
+/// min (x-1)^2 + (y-1)^2 + sigma (x-2)^2  s.t.  0 <= x _|_ y >= 0, the last term vanishing with
+/// the relaxation (as FESD's step regulariser): the polished solution keeps it at the relaxation
+/// it was polished at, x = (1 + 2 s) / (1 + s), and a warm start from it must solve that same
+/// objective, not the one at sigma = 0 (x = 1).
+TEST(MpccSolver, AWarmStartPolishesWithTheObjectiveOfThePointItStartsFrom) {
+  fesd_test::CornerMpcc<> problem;
+  problem.nlp.addFunctionTerm(fesd::QuadraticFunction::weightedDistance(
+                                  Eigen::VectorXd::Ones(1), Eigen::VectorXd::Constant(1, 2.0)),
+                              {problem.x}, -1, {{fesd::NlpAssembly::kObjective, 1.0, true}});
+  const fesd::MpccReport cold = problem.solve();
+  ASSERT_EQ(cold.status, fesd::SolveStatus::kSuccess) << cold.message;
+  ASSERT_TRUE(cold.polished);
+  const double s = cold.polish_sigma;
+  ASSERT_GT(s, 0.0);
+  EXPECT_NEAR(cold.solution[problem.x], (1.0 + 2.0 * s) / (1.0 + s), 1e-8);
+  problem.nlp.setRelaxation(0.0);  // as a new NLP of the same task starts
+  fesd::MpccSolver solver;
+  const fesd::MpccReport warm = solver.solve(problem.nlp, cold, 1e-2);
+  ASSERT_EQ(warm.status, fesd::SolveStatus::kSuccess) << warm.message;
+  EXPECT_EQ(warm.history.size(), 1u);  // polished at once
+  EXPECT_NEAR(warm.solution[problem.x], cold.solution[problem.x], 1e-8);
+  EXPECT_NEAR(warm.objective, cold.objective, 1e-10);
+  EXPECT_EQ(warm.polish_sigma, s);
+}
+
 TEST(MpccSolver, WarmStartFromAProblemWithOtherRowsDropsItsMultipliers) {
   CornerMpcc previous;
   const fesd::MpccReport solved = previous.solve();

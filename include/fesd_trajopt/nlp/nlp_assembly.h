@@ -88,7 +88,6 @@ class NlpAssembly : public RelaxedMpcc {
   }
   std::vector<double>& initialGuess() { return initial_; }
   const std::vector<double>& initialGuess() const { return initial_; }
-  double relaxation() const { return sigma_; }
 
   // NlpProblem / RelaxedMpcc
   int numVariables() const override { return static_cast<int>(x_lower_.size()); }
@@ -103,6 +102,7 @@ class NlpAssembly : public RelaxedMpcc {
   void hessian(const double* x, double objective_factor, const double* multipliers,
                double* values) const override;
   void setRelaxation(double sigma) override;
+  double relaxation() const override { return sigma_; }
   void setVanishingTermsWeight(double weight) override { vanishing_weight_ = weight; }
   int numComplementarities() const override {
     return static_cast<int>(complementarity_rows_.size());

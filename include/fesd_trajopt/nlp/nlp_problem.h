@@ -33,6 +33,7 @@ class NlpProblem {
 class RelaxedMpcc : public NlpProblem {
  public:
   virtual void setRelaxation(double sigma) = 0;
+  virtual double relaxation() const = 0;
   /// Weight of objective terms that vanish with sigma (regularisers of the relaxed NLPs);
   /// 0 removes them.
   virtual void setVanishingTermsWeight(double weight) = 0;

@@ -25,6 +25,7 @@ class KktCapture {
   };
   struct Totals {
     int analyses = 0, factorisations = 0, solves = 0, delayed_pivots = 0, two_by_two_pivots = 0;
+    int inertia_told = 0;  ///< factorisations whose inertia Ipopt's interface object was told
     double analysis_seconds = 0.0, factor_seconds = 0.0, solve_seconds = 0.0;
     int largest_dimension = 0;
     long long factor_entries = 0;  ///< of the largest system
