@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_scenes.h"
 #include "commands.h"
 #include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
@@ -18,18 +19,6 @@
 
 namespace fesd_bench {
 namespace {
-
-/// The showcase plus `rocks` passive discs (R = 1, no target) at (-12 + 4 i, -12): with all seven
-/// it is node_roundtrip's ten_discs_in_reach.
-fesd::SceneTask rocksTask(int intervals, int rocks) {
-  fesd::SceneTask task = fesd::manipulation_example::task(intervals);
-  for (int i = 0; i < rocks; ++i) {
-    task.scene.bodies().push_back(
-        {"rock_" + std::to_string(i), 1.0, Eigen::Vector2d(-12.0 + 4.0 * i, -12.0), false});
-    task.bodies.push_back(fesd::BodyTask{});
-  }
-  return task;
-}
 
 /// Per node of the KKT graph (variables, then rows): its neighbours (Hessian off-diagonals and
 /// Jacobian entries).
@@ -107,7 +96,7 @@ int kkt(const Arguments& args) {
   args.rejectUnused();
   if (rocks < 0 || rocks > 7) throw std::invalid_argument("kkt: --rocks=0..7");
 
-  const fesd::SceneTask task = rocksTask(intervals, rocks);
+  const fesd::SceneTask task = showcaseWithRocks(intervals, rocks);
   {
     fesd::SceneOutcome prepared;
     prepared.decisions = fesd::decidePairs(task);

@@ -5,10 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <functional>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -16,8 +14,8 @@
 #include <dmumps_c.h>
 
 #include "bench_args.h"
+#include "bench_scenes.h"
 #include "commands.h"
-#include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/linalg/kkt_ordering.h"
 #include "fesd_trajopt/linalg/multifrontal_ldlt.h"
 #include "fesd_trajopt/scene/robot_scenes.h"
@@ -175,26 +173,6 @@ void replay(const std::string& scene, const std::vector<fesd::KktCapture::Matrix
         1e3 * median(mumps_factor), 1e3 * median(our_solve), 1e3 * median(mumps_solve), our_error,
         our_negative, mumps_negative, our_negative == mumps_negative ? "agrees" : "DIFFERS");
   }
-}
-
-std::shared_ptr<const fesd::KinematicModel> shippedRobot(const std::string& file) {
-  std::ifstream stream(std::string(FESD_ROBOTS_DIR) + "/" + file);
-  std::stringstream text;
-  text << stream.rdbuf();
-  const fesd::KinematicModelResult built = fesd::buildKinematicModel(text.str());
-  if (!built.error.empty()) throw std::runtime_error(file + ": " + built.error);
-  return std::make_shared<const fesd::KinematicModel>(built.model);
-}
-
-/// The showcase as the node solves it by default, plus `rocks` passive discs in reach.
-fesd::SceneTask showcaseWithRocks(int intervals, int rocks) {
-  fesd::SceneTask task = fesd::manipulation_example::task(intervals);
-  for (int i = 0; i < rocks; ++i) {
-    task.scene.bodies().push_back(
-        {"rock_" + std::to_string(i), 1.0, Eigen::Vector2d(-12.0 + 4.0 * i, -12.0), false});
-    task.bodies.push_back(fesd::BodyTask{});
-  }
-  return task;
 }
 
 /// The scene's solve under `linear_solver`, as a function the bench can time.

@@ -5,14 +5,13 @@
 // and in the re-simulation, and the contact and release times per modelled pair.
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "bench_args.h"
+#include "bench_scenes.h"
 #include "commands.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
 #include "fesd_trajopt/scene/robot_scenes.h"
@@ -22,18 +21,6 @@
 #include "showcase_reference.h"
 
 namespace fesd_bench {
-namespace {
-
-std::shared_ptr<const fesd::KinematicModel> shippedRobot(const std::string& file) {
-  std::ifstream stream(std::string(FESD_ROBOTS_DIR) + "/" + file);
-  std::stringstream text;
-  text << stream.rdbuf();
-  const fesd::KinematicModelResult built = fesd::buildKinematicModel(text.str());
-  if (!built.error.empty()) throw std::runtime_error(file + ": " + built.error);
-  return std::make_shared<const fesd::KinematicModel>(built.model);
-}
-
-}  // namespace
 
 int robotPush(const Arguments& args) {
   const std::string robot = args.text("robot", "panda");

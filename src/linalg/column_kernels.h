@@ -9,8 +9,8 @@ namespace fesd::linalg::kernels {
 
 /// target[i] -= sum_p columns[p][i] * weights[p], p < count, i < length; column p starts at
 /// first + p * stride.
-inline void subtractCombination(double* target, int length, const double* first, int64_t stride,
-                                const double* weights, int count) {
+inline void subtractCombination(double* __restrict target, int length, const double* first,
+                                int64_t stride, const double* weights, int count) {
   int p = 0;
   for (; p + 4 <= count; p += 4) {
     const double* a = first + p * stride;

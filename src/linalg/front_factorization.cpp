@@ -14,6 +14,9 @@ namespace {
 
 using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic>;
 using MatrixMap = Eigen::Map<Matrix, 0, Eigen::OuterStride<>>;
+using RowMajorMap =
+    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>, 0,
+               Eigen::OuterStride<>>;
 
 /// Trailing blocks at least this large are updated with Eigen's kernels, smaller ones in loops.
 constexpr int kDenseUpdate = 64;
@@ -35,22 +38,25 @@ class PanelFactorisation {
         off_diagonal_(off_diagonal),
         w_(work),
         first_(work + static_cast<int64_t>(rows) * kFrontBlock),
-        second_(first_ + rows),
-        weights_(second_ + rows) {}
+        second_(first_ + rows) {}
 
   FrontResult run() {
     for (;;) {
       eliminateByThreshold();
-      if (!settings_.eliminate_all || k_ >= summed_ || !result_.finite) break;
+      if (!settings_.eliminate_all || k_ >= summed_) break;
       // A root front cannot delay: the best remaining column is taken whatever the threshold.
       if (k_ - panel_start_ + 2 > kFrontBlock) finishPanel();
       if (!takeBestRemaining()) {
-        result_.zero = summed_ - k_;
+        if (result_.finite) result_.zero = summed_ - k_;
         break;
       }
     }
     finishPanel();
     result_.eliminated = k_;
+    // Values that overflowed (or a NaN given) end up in the pivots: every test on them fails.
+    for (int k = 0; k < k_; ++k) {
+      if (!std::isfinite(diagonal_[k]) || !std::isfinite(off_diagonal_[k])) result_.finite = false;
+    }
     return result_;
   }
 
@@ -60,7 +66,7 @@ class PanelFactorisation {
   void eliminateByThreshold() {
     int untested_end = summed_;
     bool pivoted_since_retry = false;
-    while (k_ < summed_ && result_.finite) {
+    while (k_ < summed_) {
       if (k_ >= untested_end) {
         // Every remaining column failed once; values changed since, so try them again once.
         if (!pivoted_since_retry) break;
@@ -69,7 +75,6 @@ class PanelFactorisation {
       }
       if (k_ - panel_start_ + 2 > kFrontBlock) finishPanel();
       const int taken = tryPivot(settings_.threshold);
-      if (!result_.finite) break;
       if (taken > 0) {
         pivoted_since_retry = true;
         continue;
@@ -81,20 +86,24 @@ class PanelFactorisation {
 
   /// Of the remaining fully summed columns, the one whose diagonal is largest against the rest
   /// of its column goes to position k and is tried with no threshold; false if every pivot
-  /// there is zero.
+  /// there is zero (or not a number).
   bool takeBestRemaining() {
     int best = -1;
     double best_ratio = -1.0;
     for (int j = k_; j < summed_; ++j) {
       updatedColumn(j, first_);
-      if (!result_.finite) return false;
       const double gamma = largestOffDiagonal(first_, j, -1);
       const double ratio = gamma > 0.0 ? std::abs(first_[j]) / gamma : std::abs(first_[j]);
+      if (std::isnan(ratio)) {
+        result_.finite = false;
+        return false;
+      }
       if (ratio > best_ratio) {
         best = j;
         best_ratio = ratio;
       }
     }
+    if (best < 0) return false;
     swap(k_, best);
     return tryPivot(0.0) > 0;
   }
@@ -107,22 +116,20 @@ class PanelFactorisation {
   void updatedColumn(int j, double* c) {
     for (int i = k_; i < j; ++i) c[i] = f_[j + static_cast<int64_t>(i) * n_];
     std::copy(f_ + j + static_cast<int64_t>(j) * n_, f_ + n_ + static_cast<int64_t>(j) * n_, c + j);
-    const int width = k_ - panel_start_;
-    for (int t = 0; t < width; ++t) weights_[t] = w_[j + static_cast<int64_t>(t) * n_];
     kernels::subtractCombination(c + k_, n_ - k_, f_ + k_ + static_cast<int64_t>(panel_start_) * n_,
-                                 n_, weights_, width);
-    for (int i = k_; i < n_; ++i) {
-      if (!std::isfinite(c[i])) result_.finite = false;
-    }
+                                 n_, wRow(j), k_ - panel_start_);
   }
 
-  /// Largest |c[i]|, i >= k, i not in {skip1, skip2}.
+  /// Largest |c[i]| over i >= k but skip1 and skip2 (in loops without branches: this runs for
+  /// every pivot).
   double largestOffDiagonal(const double* c, int skip1, int skip2) const {
-    double largest = 0.0;
-    for (int i = k_; i < n_; ++i) {
-      if (i != skip1 && i != skip2) largest = std::max(largest, std::abs(c[i]));
-    }
-    return largest;
+    const int low = std::min(skip1, skip2 < 0 ? skip1 : skip2), high = std::max(skip1, skip2);
+    auto largestIn = [c](int from, int to) {
+      double largest = 0.0;
+      for (int i = from; i < to; ++i) largest = std::max(largest, std::abs(c[i]));
+      return largest;
+    };
+    return std::max({largestIn(k_, low), largestIn(low + 1, high), largestIn(high + 1, n_)});
   }
 
   /// Tries the candidate at position k as a 1x1 pivot, then as a 2x2 pivot with its largest
@@ -130,7 +137,6 @@ class PanelFactorisation {
   int tryPivot(double u) {
     const int j = k_;
     updatedColumn(j, first_);
-    if (!result_.finite) return 0;
     const double a = first_[j];
     const double gamma = largestOffDiagonal(first_, j, -1);
     if (std::abs(a) > settings_.zero && std::abs(a) >= u * gamma) {
@@ -147,12 +153,11 @@ class PanelFactorisation {
     }
     if (partner >= 0) {
       updatedColumn(partner, second_);
-      if (!result_.finite) return 0;
       const double b = first_[partner], e = second_[partner];
       const double det = a * e - b * b;
       const double gamma_first = largestOffDiagonal(first_, j, partner);
       const double gamma_second = largestOffDiagonal(second_, j, partner);
-      if (std::abs(det) > settings_.zero &&
+      if (std::isfinite(det) && std::abs(det) > settings_.zero &&
           u * (std::abs(e) * gamma_first + std::abs(b) * gamma_second) <= std::abs(det) &&
           u * (std::abs(b) * gamma_first + std::abs(a) * gamma_second) <= std::abs(det)) {
         takeTwoByTwo(partner);
@@ -169,11 +174,11 @@ class PanelFactorisation {
     off_diagonal_[k_] = 0.0;
     if (pivot < 0.0) ++result_.negative;
     double* column = f_ + static_cast<int64_t>(k_) * n_;
-    double* w = w_ + static_cast<int64_t>(k_ - panel_start_) * n_;
+    double* w = w_ + (k_ - panel_start_);
     column[k_] = pivot;
     const double inverse = 1.0 / pivot;
     for (int i = k_ + 1; i < n_; ++i) {
-      w[i] = first_[i];
+      w[static_cast<int64_t>(i) * kFrontBlock] = first_[i];
       column[i] = first_[i] * inverse;
     }
     ++k_;
@@ -201,17 +206,16 @@ class PanelFactorisation {
     }
     double* first_column = f_ + static_cast<int64_t>(p) * n_;
     double* second_column = f_ + static_cast<int64_t>(q) * n_;
-    double* w_first = w_ + static_cast<int64_t>(p - panel_start_) * n_;
-    double* w_second = w_ + static_cast<int64_t>(q - panel_start_) * n_;
+    double* w_first = w_ + (p - panel_start_);
     first_column[p] = a;
     first_column[q] = 0.0;
     second_column[q] = e;
-    w_first[q] = b;
+    w_first[static_cast<int64_t>(q) * kFrontBlock] = b;
     const double inverse_det = 1.0 / det;
     for (int i = q + 1; i < n_; ++i) {
       const double x = first_[i], y = second_[i];
-      w_first[i] = x;
-      w_second[i] = y;
+      w_first[static_cast<int64_t>(i) * kFrontBlock] = x;
+      w_first[static_cast<int64_t>(i) * kFrontBlock + 1] = y;
       first_column[i] = (x * e - y * b) * inverse_det;
       second_column[i] = (y * a - x * b) * inverse_det;
     }
@@ -229,9 +233,7 @@ class PanelFactorisation {
     for (int i = p + 1; i < q; ++i) std::swap(at(i, p), at(q, i));
     for (int i = q + 1; i < n_; ++i) std::swap(at(i, p), at(i, q));
     std::swap(at(p, p), at(q, q));
-    for (int t = 0; t < k_ - panel_start_; ++t) {
-      std::swap(w_[p + static_cast<int64_t>(t) * n_], w_[q + static_cast<int64_t>(t) * n_]);
-    }
+    std::swap_ranges(wRow(p), wRow(p) + (k_ - panel_start_), wRow(q));
     std::swap(labels_[p], labels_[q]);
   }
 
@@ -245,13 +247,12 @@ class PanelFactorisation {
         MatrixMap trailing(f_ + k_ + static_cast<int64_t>(k_) * n_, rest, rest,
                            Eigen::OuterStride<>(n_));
         MatrixMap l(panel, rest, width, Eigen::OuterStride<>(n_));
-        MatrixMap w(w_ + k_, rest, width, Eigen::OuterStride<>(n_));
+        RowMajorMap w(wRow(k_), rest, width, Eigen::OuterStride<>(kFrontBlock));
         trailing.triangularView<Eigen::Lower>() -= l * w.transpose();
       } else {
         for (int j = k_; j < n_; ++j) {
-          for (int t = 0; t < width; ++t) weights_[t] = w_[j + static_cast<int64_t>(t) * n_];
           kernels::subtractCombination(f_ + j + static_cast<int64_t>(j) * n_, n_ - j,
-                                       panel + (j - k_), n_, weights_, width);
+                                       panel + (j - k_), n_, wRow(j), width);
         }
       }
     }
@@ -263,8 +264,11 @@ class PanelFactorisation {
   int* labels_;
   const PivotSettings& settings_;
   double *diagonal_, *off_diagonal_;
-  double* w_;  ///< W = L D of the current panel's pivots, n x kFrontBlock
-  double *first_, *second_, *weights_;
+  /// Row i of W = L D of the current panel's pivots (row-major, n x kFrontBlock): the weights
+  /// of row i's update, contiguous.
+  double* wRow(int i) const { return w_ + static_cast<int64_t>(i) * kFrontBlock; }
+  double* w_;
+  double *first_, *second_;  ///< the updated columns of the candidates tried
   int k_ = 0, panel_start_ = 0;
   FrontResult result_;
 };
@@ -272,7 +276,7 @@ class PanelFactorisation {
 }  // namespace
 
 int64_t frontWorkspaceSize(int rows) {
-  return static_cast<int64_t>(rows) * (kFrontBlock + 2) + kFrontBlock;
+  return static_cast<int64_t>(rows) * (kFrontBlock + 2);
 }
 
 FrontResult factorFront(double* front, int rows, int summed, int* labels,

@@ -77,6 +77,12 @@ FactorReport MultifrontalLdlt::factor(const double* values, const PivotSettings&
   std::copy(values, values + values_.size(), values_.begin());
   report_ = FactorReport{};
   factorised_ = false;
+  for (double value : values_) {
+    if (!std::isfinite(value)) {
+      report_.finite = false;
+      return report_;
+    }
+  }
   factor_used_ = labels_used_ = 0;
   updates_.clear();
   int64_t stack_used = 0, stack_labels_used = 0, pivots_used = 0;

@@ -2,6 +2,7 @@
 // P A P^T = L D L^T reconstructed, the Schur complement of a partial factorisation, 2x2 pivots
 // and delays, the inertia, zero pivots.
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -155,6 +156,17 @@ TEST(FactorFront, ExactlySingularMatrixHasAZeroPivot) {
   const Factorised f = factorise(a, 4, all);
   EXPECT_TRUE(f.result.finite);
   EXPECT_EQ(f.result.zero, 1);
+}
+
+TEST(FactorFront, OverflowIsReportedNotHidden) {
+  // Finite entries whose elimination overflows: the Schur complement 1e-200 - 1e400 is -inf.
+  Eigen::MatrixXd a(2, 2);
+  a << 1e-200, 1e200, 1e200, 1.0;
+  PivotSettings all;
+  all.eliminate_all = true;
+  EXPECT_FALSE(factorise(a, 2, all).result.finite);
+  a(1, 1) = std::nan("");
+  EXPECT_FALSE(factorise(a, 2, all).result.finite);
 }
 
 }  // namespace

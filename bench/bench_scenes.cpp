@@ -1,0 +1,30 @@
+#include "bench_scenes.h"
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "fesd_trajopt/examples/manipulation_example.h"
+
+namespace fesd_bench {
+
+fesd::SceneTask showcaseWithRocks(int intervals, int rocks) {
+  fesd::SceneTask task = fesd::manipulation_example::task(intervals);
+  for (int i = 0; i < rocks; ++i) {
+    task.scene.bodies().push_back(
+        {"rock_" + std::to_string(i), 1.0, Eigen::Vector2d(-12.0 + 4.0 * i, -12.0), false});
+    task.bodies.push_back(fesd::BodyTask{});
+  }
+  return task;
+}
+
+std::shared_ptr<const fesd::KinematicModel> shippedRobot(const std::string& file) {
+  std::ifstream stream(std::string(FESD_ROBOTS_DIR) + "/" + file);
+  std::stringstream text;
+  text << stream.rdbuf();
+  const fesd::KinematicModelResult built = fesd::buildKinematicModel(text.str());
+  if (!built.error.empty()) throw std::runtime_error(file + ": " + built.error);
+  return std::make_shared<const fesd::KinematicModel>(built.model);
+}
+
+}  // namespace fesd_bench
