@@ -24,7 +24,7 @@ struct Square {
 /// (1, 2) and (-2, -1).
 struct Parabola {
   fesd::NlpAssembly nlp;
-  int x, y, z, inequality;
+  int x, y, z, line, inequality;
   Parabola() {
     x = nlp.addVariables(1, -kInf, kInf);
     y = nlp.addVariables(1, 0.0, kInf);
@@ -32,7 +32,7 @@ struct Parabola {
     const int curve = nlp.addRows(1, 3.0, 3.0);
     nlp.addLinear(curve, y, 1.0);
     nlp.addFunctionTerm(fesd::makeAutoDiffFunction(1, 1, Square{}), {x}, -1, {{curve, 1.0}});
-    const int line = nlp.addRows(1, -1.0, -1.0);
+    line = nlp.addRows(1, -1.0, -1.0);
     nlp.addLinear(line, {{x, 1.0}, {y, -1.0}});
     inequality = nlp.addRows(1, -kInf, 1.5);
     nlp.addLinear(inequality, y, 1.0);
@@ -59,20 +59,86 @@ TEST(SquareNewton, ConvergesQuadraticallyToTheNearRootAndSetsFixedVariables) {
   EXPECT_NEAR(fesd::constraintViolation(problem.nlp, far), 1.0, 1e-12);
 }
 
-TEST(SquareNewton, RefusesNonSquareSystemsAndReportsSingularJacobians) {
-  Parabola problem;
-  problem.nlp.setRowBounds(problem.inequality, 1.0, 1.0);  // a third equation for two unknowns
+TEST(SquareNewton, SolvesMoreEquationsThanUnknownsOnlyWhenTheyAgree) {
+  // A third equation y = 2 agrees with the root (1, 2): Newton on two of the rows finds it.
+  Parabola agreeing;
+  agreeing.nlp.setRowBounds(agreeing.inequality, 2.0, 2.0);
   std::vector<double> x{2.0, 2.0, 0.0};
-  fesd::NewtonResult result = fesd::solveSquareSystem(problem.nlp, x);
+  fesd::NewtonResult result = fesd::solveSquareSystem(agreeing.nlp, x);
+  ASSERT_TRUE(result.converged) << result.failure;
+  EXPECT_NEAR(x[0], 1.0, 1e-14);
+  EXPECT_NEAR(x[1], 2.0, 1e-14);
+  // y = 1 does not: the steps settle on a root of two rows, the third stays violated by 1.
+  Parabola disagreeing;
+  disagreeing.nlp.setRowBounds(disagreeing.inequality, 1.0, 1.0);
+  x = {2.0, 2.0, 0.0};
+  result = fesd::solveSquareSystem(disagreeing.nlp, x);
+  EXPECT_FALSE(result.converged);
+  EXPECT_GT(result.iterations, 0);
+  EXPECT_NEAR(result.residual, 1.0, 1e-9);
+  EXPECT_NE(result.failure.find("disagree"), std::string::npos) << result.failure;
+}
+
+TEST(SquareNewton, TiesMakeAnUnderdeterminedSystemSquareAndOtherwiseItIsRefused) {
+  Parabola free_line;
+  free_line.nlp.setRowBounds(free_line.line, -kInf, kInf);  // x^2 + y = 3: a curve of roots
+  std::vector<double> x{2.0, 2.0, 0.0};
+  fesd::NewtonResult result = fesd::solveSquareSystem(free_line.nlp, x);
   EXPECT_FALSE(result.converged);
   EXPECT_EQ(result.iterations, 0);
   EXPECT_NE(result.failure.find("not square"), std::string::npos) << result.failure;
+  // Tied, x = y: x^2 + x = 3.
+  fesd::SquareNewton newton;
+  result = newton.solve(free_line.nlp, x, {{free_line.x, free_line.y}});
+  ASSERT_TRUE(result.converged) << result.failure;
+  EXPECT_EQ(result.added_ties, 1);
+  EXPECT_NEAR(x[0], (std::sqrt(13.0) - 1.0) / 2.0, 1e-14);
+  EXPECT_NEAR(x[1], x[0], 1e-15);
+  // A tie on a fixed variable is no tie.
+  result = newton.solve(free_line.nlp, x, {{free_line.x, free_line.z}});
+  EXPECT_FALSE(result.converged);
+  EXPECT_EQ(result.added_ties, 0);
+}
 
+TEST(SquareNewton, SkipsTiesThatARowImposesAlready) {
+  // x - y = 0 and x + z = 1 in three unknowns: the tie (x, y) is that row, (y, z) is new.
+  fesd::NlpAssembly nlp;
+  const int x = nlp.addVariables(1, -kInf, kInf), y = nlp.addVariables(1, -kInf, kInf),
+            z = nlp.addVariables(1, -kInf, kInf);
+  nlp.addLinear(nlp.addRows(1, 0.0, 0.0), {{x, 1.0}, {y, -1.0}});
+  nlp.addLinear(nlp.addRows(1, 1.0, 1.0), {{x, 1.0}, {z, 1.0}});
+  nlp.finalize();
+  std::vector<double> point{0.0, 0.0, 0.0};
+  const fesd::NewtonResult result = fesd::SquareNewton().solve(nlp, point, {{x, y}, {y, z}});
+  ASSERT_TRUE(result.converged) << result.failure;
+  EXPECT_EQ(result.added_ties, 1);
+  EXPECT_NEAR(point[0], 0.5, 1e-15);
+  EXPECT_NEAR(point[1], 0.5, 1e-15);
+  EXPECT_NEAR(point[2], 0.5, 1e-15);
+}
+
+TEST(SquareNewton, ReportsSingularJacobians) {
   Parabola tangent;
   std::vector<double> at_vertex{-0.5, 0.5, 0.0};  // 2x = -1: the rows' gradients are parallel
-  result = fesd::solveSquareSystem(tangent.nlp, at_vertex);
+  const fesd::NewtonResult result = fesd::solveSquareSystem(tangent.nlp, at_vertex);
   EXPECT_FALSE(result.converged);
   EXPECT_NE(result.failure.find("singular"), std::string::npos) << result.failure;
+}
+
+TEST(SquareNewton, KeepsItsFactorisationStructureAcrossSolvesOfOneSystem) {
+  // Solved twice from different points with one solver: the same roots and iteration counts
+  // as with a fresh solver each time.
+  Parabola problem;
+  fesd::SquareNewton newton;
+  for (const double start : {2.0, 3.0, 1.5}) {
+    std::vector<double> reused{start, start, 0.0}, fresh{start, start, 0.0};
+    const fesd::NewtonResult a = newton.solve(problem.nlp, reused);
+    const fesd::NewtonResult b = fesd::solveSquareSystem(problem.nlp, fresh);
+    ASSERT_TRUE(a.converged && b.converged);
+    EXPECT_EQ(a.iterations, b.iterations);
+    EXPECT_NEAR(reused[0], 1.0, 1e-14);
+    EXPECT_NEAR(reused[0], fresh[0], 1e-14);
+  }
 }
 
 }  // namespace

@@ -3,7 +3,10 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/SparseCore>
+
 #include "fesd_trajopt/nlp/nlp_problem.h"
+#include "fesd_trajopt/solver/repeated_sparse_lu.h"
 
 namespace fesd {
 
@@ -18,15 +21,69 @@ struct NewtonResult {
   bool converged = false;
   int iterations = 0;
   double residual = 0.0;  ///< largest equality-row violation at the last point
+  int added_ties = 0;     ///< ties (VariableTie) that made the system determined
   std::string failure;    ///< why not converged
 };
 
-/// Newton's method on the smooth square system an MPCC leaves once its active set is fixed
+/// Two variables held equal when the equality rows leave more free variables than equations
+/// and no row already holds them equal: FESD's equal steps at an element boundary where no
+/// pair switches, which the step equilibration's sums can leave free (a force carried into a
+/// step's start that the step's control released at once).
+struct VariableTie {
+  int first = -1, second = -1;
+};
+
+/// Newton's method on the smooth system an MPCC leaves once its active set is fixed
 /// (RelaxedMpcc::fixGivenActiveSet): the equality rows (lower = upper) of `nlp` in its free
 /// variables (lower < upper), with the exact sparse Jacobian and a sparse LU factorisation.
 /// Fixed variables are set to their value first. Inequality rows and bounds are not imposed;
-/// check them afterwards (constraintViolation). Fails without iterating when free variables and
-/// equality rows differ in number, and when the Jacobian is singular.
+/// check them afterwards (constraintViolation).
+///
+/// Square systems are the rule. With more free variables than equations the ties are added
+/// (those no row imposes yet); with more equations than free variables (several pairs switching
+/// at one boundary, each adding an equation there) Newton runs on as many rows as there are
+/// unknowns, picked by the factorisation's pivots, and converges only if the others hold too:
+/// such a system has a solution only when its equations agree. Fails without iterating when
+/// the equations stay fewer than the free variables, and when the Jacobian is singular.
+///
+/// Between solves it keeps the Jacobian's structure and its factorisation's pivots (they stay
+/// the same while the NLP's pattern, free variables and equations do: the integrator's steps
+/// of one active set), so a solve mostly repeats arithmetic.
+class SquareNewton {
+ public:
+  explicit SquareNewton(NewtonOptions options = {}) : options_(options) {}
+
+  NewtonResult solve(const NlpProblem& nlp, std::vector<double>& x,
+                     const std::vector<VariableTie>& ties = {});
+
+ private:
+  /// The bounds, free variables and equations of `nlp` now; true when they and the Jacobian's
+  /// pattern are those of the last solve (the system's matrix can be reused).
+  bool readSystem(const NlpProblem& nlp);
+  /// The ties that the equality rows do not impose already (judged by the Jacobian at hand).
+  std::vector<VariableTie> missingTies(const NlpProblem& nlp,
+                                       const std::vector<VariableTie>& ties) const;
+  /// The matrix's structure and where each Jacobian entry and tie goes in it.
+  void buildMatrix(const NlpProblem& nlp);
+  /// The residual of the equations and ties at x; returns its largest magnitude.
+  double evaluateResidual(const NlpProblem& nlp, const std::vector<double>& x);
+
+  NewtonOptions options_;
+  std::vector<double> x_lower_, x_upper_, g_lower_, g_upper_, g_, jacobian_values_;
+  std::vector<int> column_of_, equation_of_, free_variables_, equations_;
+  std::vector<VariableTie> added_ties_;
+  /// The pattern the matrix was built for, and its sizes.
+  std::vector<int> pattern_rows_, pattern_cols_;
+  std::vector<int> built_free_variables_, built_equations_;
+  std::vector<VariableTie> built_ties_;
+  bool has_matrix_ = false;
+  Eigen::SparseMatrix<double> matrix_;
+  std::vector<int> value_slot_;  ///< per Jacobian entry: its slot in matrix_, or -1
+  std::vector<double> residual_, right_side_, step_;
+  RepeatedSparseLu lu_;
+};
+
+/// One Newton solve (SquareNewton) without ties.
 NewtonResult solveSquareSystem(const NlpProblem& nlp, std::vector<double>& x,
                                const NewtonOptions& options = {});
 
