@@ -191,12 +191,4 @@ void RepeatedSparseLu::solve(std::vector<double>& b, std::vector<double>& x) con
   for (int k = 0; k < cols_; ++k) x[column_order_[k]] = b[k];
 }
 
-std::vector<int> RepeatedSparseLu::unpivotedRows() const {
-  std::vector<int> rows;
-  for (int row = 0; row < rows_; ++row) {
-    if (pivot_step_[row] < 0) rows.push_back(row);
-  }
-  return rows;
-}
-
 }  // namespace fesd

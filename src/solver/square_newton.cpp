@@ -115,6 +115,16 @@ double SquareNewton::evaluateResidual(const NlpProblem& nlp, const std::vector<d
   return largest;
 }
 
+bool SquareNewton::factorizeJacobian(const NlpProblem& nlp, const std::vector<double>& x) {
+  nlp.jacobian(x.data(), jacobian_values_.data());
+  double* values = matrix_.valuePtr();
+  for (size_t e = 0; e < value_slot_.size(); ++e) {
+    if (value_slot_[e] >= 0) values[value_slot_[e]] = jacobian_values_[e];
+  }
+  factorized_ = lu_.factorize(matrix_);
+  return factorized_;
+}
+
 NewtonResult SquareNewton::solve(const NlpProblem& nlp, std::vector<double>& x,
                                  const std::vector<VariableTie>& ties) {
   const bool same_system = readSystem(nlp);
@@ -124,9 +134,9 @@ NewtonResult SquareNewton::solve(const NlpProblem& nlp, std::vector<double>& x,
   NewtonResult result;
   const int unknowns = static_cast<int>(free_variables_.size());
   jacobian_values_.resize(nlp.jacobianPattern().nonzeros());
-  nlp.jacobian(x.data(), jacobian_values_.data());
   added_ties_.clear();
   if (unknowns > static_cast<int>(equations_.size()) && !ties.empty()) {
+    nlp.jacobian(x.data(), jacobian_values_.data());
     added_ties_ = missingTies(nlp, ties);
   }
   result.added_ties = static_cast<int>(added_ties_.size());
@@ -141,47 +151,75 @@ NewtonResult SquareNewton::solve(const NlpProblem& nlp, std::vector<double>& x,
                                     [](const VariableTie& a, const VariableTie& b) {
                                       return a.first == b.first && a.second == b.second;
                                     });
-  if (!same_system || !same_ties) buildMatrix(nlp);
+  if (!same_system || !same_ties) {
+    buildMatrix(nlp);
+    factorized_ = false;
+  }
   result.residual = evaluateResidual(nlp, x);
-  double* values = matrix_.valuePtr();
+  bool fresh = false;  // lu_ factorises the Jacobian at the current x
+  double last_step = std::numeric_limits<double>::infinity();
   for (; result.iterations < options_.max_iterations; ++result.iterations) {
     if (!std::isfinite(result.residual)) {
       result.failure = "the residual is not finite";
       return result;
     }
-    if (result.iterations > 0) nlp.jacobian(x.data(), jacobian_values_.data());
-    for (size_t e = 0; e < value_slot_.size(); ++e) {
-      if (value_slot_[e] >= 0) values[value_slot_[e]] = jacobian_values_[e];
-    }
-    if (!lu_.factorize(matrix_)) {
-      result.failure = "singular Jacobian";
-      return result;
+    if (!factorized_) {
+      ++result.factorizations;
+      if (!factorizeJacobian(nlp, x)) {
+        result.failure = "singular Jacobian";
+        return result;
+      }
+      fresh = true;
     }
     right_side_.resize(rows);
     for (int i = 0; i < rows; ++i) right_side_[i] = -residual_[i];
     lu_.solve(right_side_, step_);
+    previous_free_values_.resize(unknowns);
     double step_size = 0.0;
     for (int j = 0; j < unknowns; ++j) {
+      previous_free_values_[j] = x[free_variables_[j]];
       x[free_variables_[j]] += step_[j];
       step_size = std::max(step_size, std::fabs(step_[j]));
     }
-    result.residual = evaluateResidual(nlp, x);
+    residual_.swap(previous_residual_);
+    const double residual = evaluateResidual(nlp, x);
+    if (!fresh && !(residual <= result.residual)) {
+      // An old Jacobian that does not even reduce the residual: back, and a new one here.
+      for (int j = 0; j < unknowns; ++j) x[free_variables_[j]] = previous_free_values_[j];
+      residual_.swap(previous_residual_);
+      factorized_ = false;
+      continue;
+    }
+    result.residual = residual;
     // Rounding in rows of large terms (c = |p|^2 - R^2 far from the origin) scales with |x|.
     double scale = 1.0;
     for (int v : free_variables_) scale = std::max(scale, std::fabs(x[v]));
-    const bool settled = step_size <= 1e3 * options_.tolerance * scale;
+    // A Newton step of 1e-9 leaves an error of its square; a chord step (contracting tenfold
+    // or better) one of its own size, so it must be as small as the tolerance.
+    const bool settled = step_size <= (fresh ? 1e3 : 1.0) * options_.tolerance * scale;
     if (settled && result.residual <= options_.tolerance * scale) {
       result.converged = true;
       ++result.iterations;
       return result;
     }
     if (settled && rows > unknowns) {
-      ++result.iterations;
-      result.failure = "the equations disagree: " + std::to_string(rows) + " for " +
-                       std::to_string(unknowns) + " free variables, residual " +
-                       std::to_string(result.residual) + " where the steps have settled";
-      return result;
+      // Settled on the pivot rows' root: the other rows' residual is their disagreement.
+      double pivot_rows_residual = 0.0;
+      for (int i = 0; i < rows; ++i) {
+        if (lu_.pivoted(i))
+          pivot_rows_residual = std::max(pivot_rows_residual, std::fabs(residual_[i]));
+      }
+      if (pivot_rows_residual <= options_.tolerance * scale) {
+        ++result.iterations;
+        result.failure = "the equations disagree: " + std::to_string(rows) + " for " +
+                         std::to_string(unknowns) + " free variables, residual " +
+                         std::to_string(result.residual) + " at the root of as many of them";
+        return result;
+      }
     }
+    if (!fresh && step_size > kChordContraction * last_step) factorized_ = false;
+    fresh = false;
+    last_step = step_size;
   }
   result.failure = "no convergence in " + std::to_string(options_.max_iterations) + " iterations";
   return result;

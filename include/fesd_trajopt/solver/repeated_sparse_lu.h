@@ -26,8 +26,8 @@ class RepeatedSparseLu {
 
   /// Whether the last factorize() reused the pivots and structure of the one before.
   bool reusedStructure() const { return reused_; }
-  /// The rows left out of the pivots (rows - cols of them), in increasing order.
-  std::vector<int> unpivotedRows() const;
+  /// Whether a row of the last factorised matrix is a pivot row (all but rows - cols are).
+  bool pivoted(int row) const { return pivot_step_[row] >= 0; }
 
  private:
   /// A reused pivot must be at least this fraction of the largest candidate in its column, or

@@ -11,7 +11,7 @@
 namespace fesd {
 
 struct NewtonOptions {
-  int max_iterations = 20;
+  int max_iterations = 20;  ///< steps, with a new Jacobian or with the last one
   /// Converged when every equality row holds to this (absolute; rows are in state and
   /// constraint units of order one) and the last step moved no variable by more than it.
   double tolerance = 1e-12;
@@ -20,9 +20,10 @@ struct NewtonOptions {
 struct NewtonResult {
   bool converged = false;
   int iterations = 0;
-  double residual = 0.0;  ///< largest equality-row violation at the last point
-  int added_ties = 0;     ///< ties (VariableTie) that made the system determined
-  std::string failure;    ///< why not converged
+  int factorizations = 0;  ///< Jacobians evaluated and factorised
+  double residual = 0.0;   ///< largest equality-row violation at the last point
+  int added_ties = 0;      ///< ties (VariableTie) that made the system determined
+  std::string failure;     ///< why not converged
 };
 
 /// Two variables held equal when the equality rows leave more free variables than equations
@@ -46,9 +47,13 @@ struct VariableTie {
 /// such a system has a solution only when its equations agree. Fails without iterating when
 /// the equations stay fewer than the free variables, and when the Jacobian is singular.
 ///
-/// Between solves it keeps the Jacobian's structure and its factorisation's pivots (they stay
-/// the same while the NLP's pattern, free variables and equations do: the integrator's steps
-/// of one active set), so a solve mostly repeats arithmetic.
+/// A Jacobian, once factorised, serves the following steps (the chord method) while each step
+/// shrinks at least tenfold, also into the next solve of the same system (the NLP's pattern,
+/// free variables and equations: the integrator's steps of one active set, whose Jacobians
+/// differ little); a step that does not reduce the residual, or shrinks too little, asks for a
+/// new one at the current point. The convergence test is Newton's, so the solution is the same
+/// to its tolerance. The factorisation's structure and pivots are kept for the next Jacobian
+/// of the same system too (RepeatedSparseLu).
 class SquareNewton {
  public:
   explicit SquareNewton(NewtonOptions options = {}) : options_(options) {}
@@ -65,8 +70,13 @@ class SquareNewton {
                                        const std::vector<VariableTie>& ties) const;
   /// The matrix's structure and where each Jacobian entry and tie goes in it.
   void buildMatrix(const NlpProblem& nlp);
-  /// The residual of the equations and ties at x; returns its largest magnitude.
+  /// The residual of the equations and ties at x into residual_; returns its largest magnitude.
   double evaluateResidual(const NlpProblem& nlp, const std::vector<double>& x);
+  /// Evaluates the Jacobian at x and factorises it; false when singular.
+  bool factorizeJacobian(const NlpProblem& nlp, const std::vector<double>& x);
+
+  /// The chord method's bound on a step's size relative to the step before.
+  static constexpr double kChordContraction = 0.1;
 
   NewtonOptions options_;
   std::vector<double> x_lower_, x_upper_, g_lower_, g_upper_, g_, jacobian_values_;
@@ -77,9 +87,10 @@ class SquareNewton {
   std::vector<int> built_free_variables_, built_equations_;
   std::vector<VariableTie> built_ties_;
   bool has_matrix_ = false;
+  bool factorized_ = false;  ///< lu_ holds a factorisation of a Jacobian of this system
   Eigen::SparseMatrix<double> matrix_;
   std::vector<int> value_slot_;  ///< per Jacobian entry: its slot in matrix_, or -1
-  std::vector<double> residual_, right_side_, step_;
+  std::vector<double> residual_, previous_residual_, right_side_, step_, previous_free_values_;
   RepeatedSparseLu lu_;
 };
 
