@@ -306,8 +306,15 @@ class CentreVelocity : public SmoothFunction {
 }  // namespace
 
 double centrePairValue(const CentreEvaluator& evaluator, const CentrePair& pair) {
-  const PairLayout layout = layoutOf(evaluator, pair);
-  return LocalPair(evaluator, pair, layout).value();
+  // LocalPair's value() without its Jacobians: the gap checks along a path only need values.
+  Eigen::Vector3d difference = evaluator.position(pair.a);
+  if (pair.kind == CentrePair::Kind::kCentre) {
+    difference -= evaluator.position(pair.b);
+  } else if (pair.kind == CentrePair::Kind::kPoint) {
+    difference -= pair.point;
+  }
+  if (pair.kind == CentrePair::Kind::kWall) return pair.point.dot(difference) - pair.constant;
+  return difference.squaredNorm() - pair.constant;
 }
 
 std::shared_ptr<const DcsModel> centrePairModel(const CentrePairSystem& system,

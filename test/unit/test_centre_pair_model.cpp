@@ -99,4 +99,24 @@ TEST(CentrePairModel, ValuesAreTheGeometricOnes) {
   EXPECT_NEAR(c(6), 0.2 * 0.2 + 1.8 * 1.8 - 0.05, 1e-12);
 }
 
+TEST(CentrePairModel, APairsValueAloneIsTheModelsConstraint) {
+  // centrePairValue (the gap checks along paths) skips the derivatives the model evaluates.
+  for (const auto& [robot, dimension] :
+       {std::make_pair("planar_arm.urdf", 2), std::make_pair("panda_spherized.urdf", 3)}) {
+    const fesd::CentrePairSystem system = mixedSystem(robot, dimension);
+    const auto model = fesd::centrePairModel(system, "test");
+    fesd::CentreEvaluator evaluator(system.robot, dimension);
+    std::mt19937 random(5);
+    for (int trial = 0; trial < 3; ++trial) {
+      const Eigen::VectorXd x = fesd_test::randomVector(system.state_size, random);
+      Eigen::VectorXd c(system.pairs.size());
+      model->constraints()->evaluate(x.data(), c.data());
+      evaluator.setState(x.data());
+      for (size_t k = 0; k < system.pairs.size(); ++k) {
+        EXPECT_DOUBLE_EQ(fesd::centrePairValue(evaluator, system.pairs[k]), c(k)) << "pair " << k;
+      }
+    }
+  }
+}
+
 }  // namespace
