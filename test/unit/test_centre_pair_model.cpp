@@ -95,28 +95,9 @@ TEST(CentrePairModel, ValuesAreTheGeometricOnes) {
   EXPECT_NEAR(c(4), 0.5 * 0.5 + 4.0 - 0.04, 1e-12);
   const Eigen::Vector3d n = system.pairs[3].point;
   EXPECT_NEAR(c(3), n.x() * 0.9 - 0.1, 1e-12);
+  EXPECT_NEAR(c(5), n.x() * 0.5 + 0.2, 1e-12);  // body 1 against the wall
   // Body 0's sphere sits 0.1 right of and 0.2 below its position: at (1.1, 1.8).
   EXPECT_NEAR(c(6), 0.2 * 0.2 + 1.8 * 1.8 - 0.05, 1e-12);
-}
-
-TEST(CentrePairModel, APairsValueAloneIsTheModelsConstraint) {
-  // centrePairValue (the gap checks along paths) skips the derivatives the model evaluates.
-  for (const auto& [robot, dimension] :
-       {std::make_pair("planar_arm.urdf", 2), std::make_pair("panda_spherized.urdf", 3)}) {
-    const fesd::CentrePairSystem system = mixedSystem(robot, dimension);
-    const auto model = fesd::centrePairModel(system, "test");
-    fesd::CentreEvaluator evaluator(system.robot, dimension);
-    std::mt19937 random(5);
-    for (int trial = 0; trial < 3; ++trial) {
-      const Eigen::VectorXd x = fesd_test::randomVector(system.state_size, random);
-      Eigen::VectorXd c(system.pairs.size());
-      model->constraints()->evaluate(x.data(), c.data());
-      evaluator.setState(x.data());
-      for (size_t k = 0; k < system.pairs.size(); ++k) {
-        EXPECT_DOUBLE_EQ(fesd::centrePairValue(evaluator, system.pairs[k]), c(k)) << "pair " << k;
-      }
-    }
-  }
 }
 
 }  // namespace
