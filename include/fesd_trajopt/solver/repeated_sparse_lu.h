@@ -11,8 +11,9 @@ namespace fesd {
 /// chosen by partial pivoting (left-looking, Gilbert-Peierls). The first factorisation of a
 /// pattern finds the order, the pivots and the structure of L and U; later ones with the same
 /// pattern only redo the arithmetic on that structure, and pivot afresh when a reused pivot has
-/// become small in its column. On the integrator's step systems (~150 unknowns) that is
-/// ~10 times cheaper than Eigen's SparseLU, whose supernodal machinery is made for larger ones.
+/// become small in its column. On the integrator's step systems (~150 unknowns) a refactorisation
+/// takes 6-13 us against 55-68 us for Eigen's SparseLU, whose supernodal machinery is made for
+/// larger matrices.
 ///
 /// A may have more rows than columns: the pivots then pick as many rows as there are columns,
 /// and solve() solves the square system of those rows (the others are for the caller to check).
