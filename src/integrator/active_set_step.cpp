@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "fesd_trajopt/solver/square_newton.h"
+#include "fesd_trajopt/discretization/collocation_discretization.h"
 
 namespace fesd {
 namespace {
@@ -65,6 +65,20 @@ MpccReport solvedReport(const RelaxedMpcc& nlp, std::vector<double> solution) {
 
 }  // namespace
 
+std::vector<VariableTie> equalStepTies(const Discretization& discretization,
+                                       const PairModes& modes) {
+  const auto* collocation = dynamic_cast<const CollocationDiscretization*>(&discretization);
+  if (!collocation || !collocation->stepsAreFree()) return {};
+  const int per_interval = collocation->options().num_elements;
+  std::vector<VariableTie> ties;
+  for (int e = 1; e < collocation->numElements() && e < static_cast<int>(modes.size()); ++e) {
+    if (e % per_interval != 0 && modes[e - 1] == modes[e]) {
+      ties.push_back({collocation->stepIndex(e - 1), collocation->stepIndex(e)});
+    }
+  }
+  return ties;
+}
+
 PairModes predictModes(const Trajectory* previous, const std::vector<bool>& active_at_start,
                        int num_elements, double tolerance) {
   std::vector<bool> active = active_at_start;
@@ -82,6 +96,13 @@ PairModes predictModes(const Trajectory* previous, const std::vector<bool>& acti
 
 ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vector<double>& guess,
                                 const PairModes& predicted, const ActiveSetOptions& options) {
+  SquareNewton newton;
+  return solveByActiveSets(discretization, guess, predicted, options, newton);
+}
+
+ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vector<double>& guess,
+                                const PairModes& predicted, const ActiveSetOptions& options,
+                                SquareNewton& newton) {
   const double tolerance = options.tolerance;
   RelaxedMpcc& nlp = discretization.nlp();
   ActiveSetStep step;
@@ -110,11 +131,11 @@ ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vecto
       return step;
     }
     std::vector<double> x = guess;
-    const NewtonResult newton = solveSquareSystem(nlp, x);
+    const NewtonResult solved = newton.solve(nlp, x, equalStepTies(discretization, modes));
     nlp.releaseActiveSet();
-    step.newton_iterations += newton.iterations;
-    if (!newton.converged) {
-      step.failure = "Newton: " + newton.failure;
+    step.newton_iterations += solved.iterations;
+    if (!solved.converged) {
+      step.failure = "Newton: " + solved.failure;
       return step;
     }
     Trajectory piece = discretization.extract(

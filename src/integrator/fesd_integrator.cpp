@@ -190,7 +190,8 @@ class FesdIntegrator::Run {
       fast_options.start_time = start_time;
       fast_options.activity_tolerance = options_.activity_tolerance;
       fast_options.penetration_tolerance = options_.penetration_tolerance;
-      ActiveSetStep fast = solveByActiveSets(discretization, guess, predicted, fast_options);
+      ActiveSetStep fast =
+          solveByActiveSets(discretization, guess, predicted, fast_options, newton_);
       result.newton_iterations += fast.newton_iterations;
       if (fast.outcome != ActiveSetOutcome::kFailed) {
         attempt.report = std::move(fast.report);
@@ -253,6 +254,8 @@ class FesdIntegrator::Run {
   Stopwatch stopwatch_;
   OcpDefinition step_problem_;
   std::unique_ptr<MpccSolver> solver_, retry_solver_;  ///< the homotopy and its retry path
+  /// Newton on the active sets; it keeps the factorisation's structure from step to step.
+  SquareNewton newton_;
   Eigen::VectorXd state_;
   Eigen::VectorXd previous_control_;  ///< of the last part in the trajectory
   /// By (tenths, middles, kind); a map's references stay valid as parts are added.

@@ -55,11 +55,6 @@ class LocalPair {
     }
   }
 
-  double value() const {
-    if (pair_.kind == CentrePair::Kind::kWall) return pair_.point.dot(difference_) - pair_.constant;
-    return difference_.squaredNorm() - pair_.constant;
-  }
-
   Eigen::VectorXd gradient() const {
     if (pair_.kind == CentrePair::Kind::kWall) return jacobian_.transpose() * pair_.point;
     return 2.0 * jacobian_.transpose() * difference_;
@@ -143,9 +138,10 @@ class PairSet {
   int size() const { return static_cast<int>(system_.pairs.size()); }
   const CentrePairSystem& system() const { return system_; }
   const PairLayout& layout(int k) const { return layouts_[k]; }
-  /// Sets the state; then local(k) gives pair k's derivatives there.
+  /// Sets the state; then local(k) gives pair k's derivatives there, value(k) its value alone.
   void setState(const double* x) const { evaluator_.setState(x); }
   LocalPair local(int k) const { return LocalPair(evaluator_, system_.pairs[k], layouts_[k]); }
+  double value(int k) const { return centrePairValue(evaluator_, system_.pairs[k]); }
 
  private:
   CentrePairSystem system_;
@@ -174,7 +170,7 @@ class CentreConstraints : public SmoothFunction {
   int outputSize() const override { return pairs_->size(); }
   void evaluate(const double* x, double* c) const override {
     pairs_->setState(x);
-    for (int k = 0; k < outputSize(); ++k) c[k] = pairs_->local(k).value();
+    for (int k = 0; k < outputSize(); ++k) c[k] = pairs_->value(k);
   }
   const SparsityPattern& jacobianPattern() const override { return jacobian_; }
   void evaluateJacobian(const double* x, double* values) const override {
@@ -306,8 +302,16 @@ class CentreVelocity : public SmoothFunction {
 }  // namespace
 
 double centrePairValue(const CentreEvaluator& evaluator, const CentrePair& pair) {
-  const PairLayout layout = layoutOf(evaluator, pair);
-  return LocalPair(evaluator, pair, layout).value();
+  // The value alone, without the Jacobians a LocalPair gathers: constraint values are
+  // evaluated at every Newton iterate and along every path checked for gaps.
+  Eigen::Vector3d difference = evaluator.position(pair.a);
+  if (pair.kind == CentrePair::Kind::kCentre) {
+    difference -= evaluator.position(pair.b);
+  } else if (pair.kind == CentrePair::Kind::kPoint) {
+    difference -= pair.point;
+  }
+  if (pair.kind == CentrePair::Kind::kWall) return pair.point.dot(difference) - pair.constant;
+  return difference.squaredNorm() - pair.constant;
 }
 
 std::shared_ptr<const DcsModel> centrePairModel(const CentrePairSystem& system,

@@ -61,11 +61,27 @@ double smallestGap(const DiscScene& scene, const ContactPair& pair,
     for (const Eigen::VectorXd& x : path) smallest = std::min(smallest, pairGap(scene, pair, x));
     return smallest;
   }
-  const double size = pairSize(scene, pair);
+  // The relative positions along the path, one column per point (segmentDistance's arithmetic
+  // from the origin, without a vector allocated per point).
+  const int dimension = scene.dimension();
+  const int body = scene.stateIndex(pair.body);
+  Eigen::MatrixXd relative(dimension, path.size());
   for (size_t i = 0; i < path.size(); ++i) {
-    const Eigen::VectorXd a = relativePosition(scene, pair, path[i]);
-    const Eigen::VectorXd b = i + 1 < path.size() ? relativePosition(scene, pair, path[i + 1]) : a;
-    smallest = std::min(smallest, segmentDistance(Eigen::VectorXd::Zero(a.size()), a, b) - size);
+    relative.col(i) = path[i].segment(body, dimension);
+    if (pair.kind == ContactPair::Kind::kBody) {
+      relative.col(i) -= path[i].segment(scene.stateIndex(pair.other), dimension);
+    } else {
+      relative.col(i) -= scene.obstacles().at(pair.other).position;
+    }
+  }
+  const double size = pairSize(scene, pair);
+  for (Eigen::Index i = 0; i < relative.cols(); ++i) {
+    const auto a = relative.col(i);
+    const auto b = relative.col(i + 1 < relative.cols() ? i + 1 : i);
+    const double length_squared = (b - a).squaredNorm();
+    const double s =
+        length_squared > 0.0 ? std::clamp(-a.dot(b - a) / length_squared, 0.0, 1.0) : 0.0;
+    smallest = std::min(smallest, (a + s * (b - a)).norm() - size);
   }
   return smallest;
 }

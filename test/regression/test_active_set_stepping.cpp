@@ -2,13 +2,18 @@
 // grids: the same trajectories, and how many parts each path took.
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include <gtest/gtest.h>
 
 #include "fesd_trajopt/examples/circle_example.h"
 #include "fesd_trajopt/examples/filippov_examples.h"
+#include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
+#include "fesd_trajopt/ocp/ocp_solver.h"
+#include "fesd_trajopt/scene/moving_part.h"
 #include "fesd_trajopt/scene/push_scenes.h"
+#include "fesd_trajopt/scene/scene_solver.h"
 
 namespace {
 
@@ -104,6 +109,47 @@ TEST(ActiveSetStepping, FilippovSpiralMatchesTheHomotopyAndPredictsStepsWithoutC
     EXPECT_GE(runs.active_set.predicted_parts, 14);  // every step but the crossing's
     EXPECT_LT(runs.active_set.totals.iterations, runs.homotopy.totals.iterations / 4);
   }
+}
+
+TEST(ActiveSetStepping, TheShowcasePlanIsReSimulatedWithoutTheHomotopy) {
+  // The verification of the default scene's plan: both pushers touch the object at one element
+  // boundary (two equations for one free step), and both let go where the control changes at
+  // t = 3.5 (a force carried into a step that releases at its start). Both steps took the
+  // homotopy, 56 Ipopt iterations; now they are located by Newton, to the homotopy's switches.
+  const fesd::SceneTask task = fesd::manipulation_example::task(40);
+  fesd::SceneSolveOptions options;
+  options.ocp.discretization.num_elements = 3;
+  options.ocp.discretization.num_stages = 2;
+  const fesd::SceneOutcome plan = fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
+  ASSERT_EQ(plan.status, fesd::SolveStatus::kSuccess) << plan.message;
+  fesd::DiscretizationOptions verification;
+  verification.num_stages = 3;
+  verification.num_elements = 6;
+  const fesd::SimulationOptions fine =
+      fesd::verificationOptions(verification, options.ocp, std::numeric_limits<double>::infinity());
+  const fesd::MovingPart part = fesd::movingPart(task, plan.decisions);
+  const fesd::OcpDefinition ocp = fesd::buildOcp(part.task, part.modelled);
+  const BothPaths runs = simulateBoth(ocp.model, ocp.initial_state, ocp.horizon, ocp.num_intervals,
+                                      fine, plan.trajectory.controls);
+  ASSERT_EQ(runs.active_set.status, fesd::SolveStatus::kSuccess) << runs.active_set.message;
+  ASSERT_EQ(runs.homotopy.status, fesd::SolveStatus::kSuccess) << runs.homotopy.message;
+  EXPECT_EQ(runs.active_set.totals.iterations, 0);
+  EXPECT_EQ(runs.active_set.homotopy_parts, 0);
+  EXPECT_EQ(runs.active_set.located_parts, 2);
+  // The homotopy leaves the steps around the release's boundary 3.5e-8 apart (the freedom the
+  // equal-step ties take away), which moves no state at the step's end: the released bodies
+  // move in straight lines.
+  const fesd::Trajectory& a = runs.active_set.trajectory;
+  const fesd::Trajectory& b = runs.homotopy.trajectory;
+  EXPECT_LT((a.finalState() - b.finalState()).lpNorm<Eigen::Infinity>(), 1e-8);
+  ASSERT_EQ(a.switches.size(), 4u);
+  ASSERT_EQ(b.switches.size(), 4u);
+  for (size_t i = 0; i < a.switches.size(); ++i) {
+    EXPECT_EQ(a.switches[i].kind, b.switches[i].kind);
+    EXPECT_NEAR(a.switches[i].time, b.switches[i].time, 1e-8);
+  }
+  EXPECT_NEAR(a.switches.front().time, 1.3321, 1e-4);
+  EXPECT_NEAR(a.switches.back().time, 3.5, 1e-12);
 }
 
 }  // namespace

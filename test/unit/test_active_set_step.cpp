@@ -5,10 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include "fesd_trajopt/discretization/collocation_discretization.h"
 #include "fesd_trajopt/discretization/pds_discretization.h"
 #include "fesd_trajopt/examples/circle_example.h"
 #include "fesd_trajopt/integrator/active_set_step.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
+#include "fesd_trajopt/scene/disc_scene.h"
 
 namespace {
 
@@ -85,6 +87,106 @@ TEST(ActiveSetStep, ModesThatContradictTheStartAreRefusedForTheHomotopy) {
                               fesd::ActiveSetOptions{});
   EXPECT_EQ(fast.outcome, fesd::ActiveSetOutcome::kFailed);
   EXPECT_NE(fast.failure.find("contradict"), std::string::npos) << fast.failure;
+}
+
+TEST(ActiveSetStep, StepsAreTiedWhereNoPairSwitchesInsideAControlInterval) {
+  fesd::OcpDefinition ocp;
+  ocp.model = example::model();
+  ocp.initial_state = example::initialState();
+  ocp.horizon = 1.0;
+  ocp.num_intervals = 2;
+  fesd::DiscretizationOptions options;
+  options.num_elements = 3;
+  const auto discretization = fesd::discretize(ocp, options);
+  const auto& grid = dynamic_cast<const fesd::CollocationDiscretization&>(*discretization);
+  // Six elements, a contact from element 2 on: boundaries 1, 4 and 5 keep their modes;
+  // boundary 3 separates the control intervals.
+  const fesd::PairModes modes{{false}, {false}, {true}, {true}, {true}, {true}};
+  const std::vector<fesd::VariableTie> ties = fesd::equalStepTies(*discretization, modes);
+  ASSERT_EQ(ties.size(), 3u);
+  const int tied[][2] = {{0, 1}, {3, 4}, {4, 5}};
+  for (size_t t = 0; t < ties.size(); ++t) {
+    EXPECT_EQ(ties[t].first, grid.stepIndex(tied[t][0]));
+    EXPECT_EQ(ties[t].second, grid.stepIndex(tied[t][1]));
+  }
+}
+
+/// Two pushers (R = 1) at (-3, 0) and (3, 0) driven towards a passive disc (R = 1) at the origin
+/// at unit speed: both touch it at t = 1 exactly, by symmetry.
+struct SymmetricPush {
+  fesd::DiscScene scene{2};
+  Eigen::VectorXd control{Eigen::Vector4d(1.0, 0.0, -1.0, 0.0)};
+  SymmetricPush() {
+    scene.bodies().push_back({"left", 1.0, Eigen::Vector2d(-3.0, 0.0), true});
+    scene.bodies().push_back({"right", 1.0, Eigen::Vector2d(3.0, 0.0), true});
+    scene.bodies().push_back({"object", 1.0, Eigen::Vector2d(0.0, 0.0), false});
+  }
+  /// One step of `length` on 6 elements of 3 stages from x0 under `u`.
+  std::unique_ptr<fesd::Discretization> step(const Eigen::VectorXd& x0, double length,
+                                             const Eigen::VectorXd& u) const {
+    fesd::OcpDefinition ocp;
+    ocp.model = scene.model(scene.allPairs());
+    ocp.initial_state = x0;
+    ocp.horizon = length;
+    fesd::DiscretizationOptions options;
+    options.num_stages = 3;
+    options.num_elements = 6;
+    auto discretization = fesd::discretize(ocp, options);
+    discretization->fixControl(0, u);
+    return discretization;
+  }
+};
+
+TEST(ActiveSetStep, TwoContactsAtOneBoundaryAreLocatedThoughTheyAddAnEquationTooMany) {
+  SymmetricPush push;
+  // Contact at t = 1 of a step of 1.3: boundary 5 (at 1.083 nominally) moves there.
+  const auto discretization = push.step(push.scene.initialState(), 1.3, push.control);
+  const std::vector<double> guess = discretization->constantGuess({push.control});
+  const fesd::PairModes free(6, std::vector<bool>(3, false));
+  const fesd::ActiveSetStep fast =
+      fesd::solveByActiveSets(*discretization, guess, free, fesd::ActiveSetOptions{});
+  ASSERT_EQ(fast.outcome, fesd::ActiveSetOutcome::kLocated) << fast.failure;
+  ASSERT_EQ(fast.piece.switches.size(), 2u);
+  for (const fesd::SwitchEvent& contact : fast.piece.switches) {
+    EXPECT_NEAR(contact.time, 1.0, 1e-12);
+  }
+  // The pushers stop at the object, which stays where it is.
+  EXPECT_NEAR(fast.piece.finalState()(0), -2.0, 1e-12);
+  EXPECT_NEAR(fast.piece.finalState()(2), 2.0, 1e-12);
+  EXPECT_NEAR(fast.piece.finalState().tail<2>().norm(), 0.0, 1e-12);
+}
+
+TEST(ActiveSetStep, AReleaseAtTheStartOfANewControlKeepsTheOtherStepsEqual) {
+  SymmetricPush push;
+  // The left pusher touching the object with a force carried over from a push; the new
+  // control pulls it back at once. The force before the step's start counts in the step
+  // equilibration's sums of boundary 1, which leaves that boundary's steps free.
+  Eigen::VectorXd x0 = push.scene.initialState();
+  x0.head<2>() << -2.0, 0.0;
+  const Eigen::Vector4d pull(-1.0, 0.0, 0.0, 0.0);
+  const auto discretization = push.step(x0, 0.6, pull);
+  fesd::Trajectory previous;
+  fesd::ElementValues last{0,
+                           -0.1,
+                           0.1,
+                           Eigen::MatrixXd::Zero(6, 3),
+                           Eigen::MatrixXd::Zero(3, 3),
+                           Eigen::MatrixXd::Zero(3, 3),
+                           Eigen::VectorXd()};
+  last.stage_multipliers(1, 2) = 0.25;  // pair left/object (allPairs: left/right first)
+  last.stage_constraints.row(0).setConstant(2.0);
+  previous.elements.push_back(last);
+  discretization->continueFrom(previous, false);
+  const fesd::PairModes predicted = fesd::predictModes(&previous, {}, 6, 1e-9);
+  ASSERT_TRUE(predicted[0][1]);
+  const fesd::ActiveSetStep fast = fesd::solveByActiveSets(
+      *discretization, discretization->constantGuess({pull}), predicted, fesd::ActiveSetOptions{});
+  ASSERT_EQ(fast.outcome, fesd::ActiveSetOutcome::kLocated) << fast.failure;
+  EXPECT_EQ(fast.mode_sequences, 2);
+  for (const fesd::ElementValues& element : fast.piece.elements) {
+    EXPECT_NEAR(element.step, 0.1, 1e-15);
+  }
+  EXPECT_NEAR(fast.piece.finalState()(0), -2.6, 1e-12);
 }
 
 }  // namespace

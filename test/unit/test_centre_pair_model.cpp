@@ -95,6 +95,7 @@ TEST(CentrePairModel, ValuesAreTheGeometricOnes) {
   EXPECT_NEAR(c(4), 0.5 * 0.5 + 4.0 - 0.04, 1e-12);
   const Eigen::Vector3d n = system.pairs[3].point;
   EXPECT_NEAR(c(3), n.x() * 0.9 - 0.1, 1e-12);
+  EXPECT_NEAR(c(5), n.x() * 0.5 + 0.2, 1e-12);  // body 1 against the wall
   // Body 0's sphere sits 0.1 right of and 0.2 below its position: at (1.1, 1.8).
   EXPECT_NEAR(c(6), 0.2 * 0.2 + 1.8 * 1.8 - 0.05, 1e-12);
 }

@@ -5,6 +5,7 @@
 
 #include "fesd_trajopt/discretization/discretization.h"
 #include "fesd_trajopt/solver/mpcc_solver.h"
+#include "fesd_trajopt/solver/square_newton.h"
 
 namespace fesd {
 
@@ -48,7 +49,20 @@ PairModes predictModes(const Trajectory* previous, const std::vector<bool>& acti
 /// every FESD condition (bounds, rows, complementarity and step equilibration at sigma = 0) to
 /// `tolerance`: it is then the exact solution of the same equations the polished homotopy
 /// solves.
+///
+/// Where the modes leave a boundary inside a control interval unswitched, its steps are equal
+/// (equalStepTies), which the step equilibration may leave free. `newton` keeps its
+/// factorisation's structure for the next step of the same active set.
+ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vector<double>& guess,
+                                const PairModes& predicted, const ActiveSetOptions& options,
+                                SquareNewton& newton);
+/// The same with a Newton solver of its own.
 ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vector<double>& guess,
                                 const PairModes& predicted, const ActiveSetOptions& options);
+
+/// The steps of the elements on both sides of each boundary inside a control interval where no
+/// pair changes its mode (Table I of Pozharskiy et al. 2024: no switch there, equal steps).
+std::vector<VariableTie> equalStepTies(const Discretization& discretization,
+                                       const PairModes& modes);
 
 }  // namespace fesd

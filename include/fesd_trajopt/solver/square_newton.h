@@ -3,12 +3,15 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/SparseCore>
+
 #include "fesd_trajopt/nlp/nlp_problem.h"
+#include "fesd_trajopt/solver/repeated_sparse_lu.h"
 
 namespace fesd {
 
 struct NewtonOptions {
-  int max_iterations = 20;
+  int max_iterations = 20;  ///< steps, with a new Jacobian or with the last one
   /// Converged when every equality row holds to this (absolute; rows are in state and
   /// constraint units of order one) and the last step moved no variable by more than it.
   double tolerance = 1e-12;
@@ -17,16 +20,81 @@ struct NewtonOptions {
 struct NewtonResult {
   bool converged = false;
   int iterations = 0;
-  double residual = 0.0;  ///< largest equality-row violation at the last point
-  std::string failure;    ///< why not converged
+  int factorizations = 0;  ///< Jacobians evaluated and factorised
+  double residual = 0.0;   ///< largest equality-row violation at the last point
+  int added_ties = 0;      ///< ties (VariableTie) that made the system determined
+  std::string failure;     ///< why not converged
 };
 
-/// Newton's method on the smooth square system an MPCC leaves once its active set is fixed
+/// Two variables held equal when the equality rows leave more free variables than equations
+/// and no row already holds them equal: FESD's equal steps at an element boundary where no
+/// pair switches, which the step equilibration's sums can leave free (a force carried into a
+/// step's start that the step's control released at once).
+struct VariableTie {
+  int first = -1, second = -1;
+};
+
+/// Newton's method on the smooth system an MPCC leaves once its active set is fixed
 /// (RelaxedMpcc::fixGivenActiveSet): the equality rows (lower = upper) of `nlp` in its free
 /// variables (lower < upper), with the exact sparse Jacobian and a sparse LU factorisation.
 /// Fixed variables are set to their value first. Inequality rows and bounds are not imposed;
-/// check them afterwards (constraintViolation). Fails without iterating when free variables and
-/// equality rows differ in number, and when the Jacobian is singular.
+/// check them afterwards (constraintViolation).
+///
+/// Square systems are the rule. With more free variables than equations the ties are added
+/// (those no row imposes yet); with more equations than free variables (several pairs switching
+/// at one boundary, each adding an equation there) Newton runs on as many rows as there are
+/// unknowns, picked by the factorisation's pivots, and converges only if the others hold too:
+/// such a system has a solution only when its equations agree. Fails without iterating when
+/// the equations stay fewer than the free variables, and when the Jacobian is singular.
+///
+/// A Jacobian, once factorised, serves the following steps (the chord method) while each step
+/// shrinks at least tenfold, also into the next solve of the same system (the NLP's pattern,
+/// free variables and equations: the integrator's steps of one active set, whose Jacobians
+/// differ little); a step that does not reduce the residual, or shrinks too little, asks for a
+/// new one at the current point. The convergence test is Newton's, so the solution is the same
+/// to its tolerance. The factorisation's structure and pivots are kept for the next Jacobian
+/// of the same system too (RepeatedSparseLu).
+class SquareNewton {
+ public:
+  explicit SquareNewton(NewtonOptions options = {}) : options_(options) {}
+
+  NewtonResult solve(const NlpProblem& nlp, std::vector<double>& x,
+                     const std::vector<VariableTie>& ties = {});
+
+ private:
+  /// The bounds, free variables and equations of `nlp` now; true when they and the Jacobian's
+  /// pattern are those of the last solve (the system's matrix can be reused).
+  bool readSystem(const NlpProblem& nlp);
+  /// The ties that the equality rows do not impose already (judged by the Jacobian at hand).
+  std::vector<VariableTie> missingTies(const NlpProblem& nlp,
+                                       const std::vector<VariableTie>& ties) const;
+  /// The matrix's structure and where each Jacobian entry and tie goes in it.
+  void buildMatrix(const NlpProblem& nlp);
+  /// The residual of the equations and ties at x into residual_; returns its largest magnitude.
+  double evaluateResidual(const NlpProblem& nlp, const std::vector<double>& x);
+  /// Evaluates the Jacobian at x and factorises it; false when singular.
+  bool factorizeJacobian(const NlpProblem& nlp, const std::vector<double>& x);
+
+  /// The chord method's bound on a step's size relative to the step before.
+  static constexpr double kChordContraction = 0.1;
+
+  NewtonOptions options_;
+  std::vector<double> x_lower_, x_upper_, g_lower_, g_upper_, g_, jacobian_values_;
+  std::vector<int> column_of_, equation_of_, free_variables_, equations_;
+  std::vector<VariableTie> added_ties_;
+  /// The pattern the matrix was built for, and its sizes.
+  std::vector<int> pattern_rows_, pattern_cols_;
+  std::vector<int> built_free_variables_, built_equations_;
+  std::vector<VariableTie> built_ties_;
+  bool has_matrix_ = false;
+  bool factorized_ = false;  ///< lu_ holds a factorisation of a Jacobian of this system
+  Eigen::SparseMatrix<double> matrix_;
+  std::vector<int> value_slot_;  ///< per Jacobian entry: its slot in matrix_, or -1
+  std::vector<double> residual_, previous_residual_, right_side_, step_, previous_free_values_;
+  RepeatedSparseLu lu_;
+};
+
+/// One Newton solve (SquareNewton) without ties.
 NewtonResult solveSquareSystem(const NlpProblem& nlp, std::vector<double>& x,
                                const NewtonOptions& options = {});
 
