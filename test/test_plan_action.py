@@ -2,6 +2,7 @@
 """Integration tests of the node for replanning: the ~plan action (feedback, cancel, queueing),
 warm starts, the accuracy ladder, and the playback of the motion."""
 import math
+import multiprocessing
 import time
 import unittest
 
@@ -33,6 +34,12 @@ def long_goal():
     return PlanTrajectoryGoal(request=PlanRequest(target_accuracy=1e-14))
 
 
+def solver_threads():
+    """The goals the node solves at once (~solver_threads, 0: one per core)."""
+    configured = rospy.get_param("/fesd_trajopt/solver_threads", 0)
+    return configured if configured > 0 else multiprocessing.cpu_count()
+
+
 def wait_until(condition, timeout=10.0):
     deadline = time.time() + timeout
     while not condition() and time.time() < deadline:
@@ -60,18 +67,26 @@ class PlanAction(unittest.TestCase):
 
     def test_an_empty_goal_solves_the_default_scene_with_feedback_after_every_relaxed_nlp(self):
         # From the topic: the client drops feedback that arrives after its result.
-        feedback = []
+        # Goals run side by side: only this goal's feedback counts.
+        received = []
         subscriber = rospy.Subscriber(PLAN + "/feedback", PlanTrajectoryActionFeedback,
-                                      lambda message: feedback.append(message.feedback))
+                                      received.append)
         self.assertTrue(wait_until(lambda: subscriber.get_num_connections() > 0))
         self.client.send_goal(PlanTrajectoryGoal())
+        goal_id = self.client.gh.comm_state_machine.action_goal.goal_id.id
+        feedback = []
+
+        def own():
+            feedback[:] = [m.feedback for m in received if m.status.goal_id.id == goal_id]
+            return feedback
         self.assertTrue(self.client.wait_for_result(rospy.Duration(120.0)))
         self.assertEqual(self.client.get_state(), GoalStatus.SUCCEEDED)
         result = self.client.get_result()
         self.assertEqual(result.status, Solution.SUCCESS, result.message)
         statistics = result.solution.statistics
-        wait_until(lambda: len(feedback) >= statistics.homotopy_steps, timeout=5.0)
+        wait_until(lambda: len(own()) >= statistics.homotopy_steps, timeout=5.0)
         subscriber.unregister()
+        own()
         self.assertEqual(len(feedback), statistics.homotopy_steps)
         self.assertEqual([f.homotopy_step for f in feedback], list(range(1, len(feedback) + 1)))
         self.assertEqual([f.sigma for f in feedback], list(statistics.sigma))
@@ -104,37 +119,41 @@ class PlanAction(unittest.TestCase):
         self.assertEqual(len(result.solution.states),
                          len(result.solution.times) * result.solution.state_dimension)
 
-    def test_goals_queue_and_each_gets_its_own_answer(self):
-        first, second = self.client, self.new_client()
-        requests = [small_default(12), small_default(8)]
-        first.send_goal(PlanTrajectoryGoal(request=requests[0]))
-        self.assertTrue(wait_until(lambda: first.get_state() == GoalStatus.ACTIVE))
-        second.send_goal(PlanTrajectoryGoal(request=requests[1]))
-        self.assertTrue(second.wait_for_result(rospy.Duration(120.0)))
-        # The second goal waited for the first: by the time it is done, so is the first.
-        self.assertEqual(first.get_state(), GoalStatus.SUCCEEDED)
-        self.assertEqual(second.get_state(), GoalStatus.SUCCEEDED)
-        for client, request in zip([first, second], requests):
+    def test_goals_run_side_by_side_queue_beyond_the_workers_and_each_gets_its_own_answer(self):
+        clients = [self.client] + [self.new_client() for _ in range(solver_threads())]
+        requests = [small_default(8 + 2 * k) for k in range(len(clients))]
+        for client, request in zip(clients, requests):
+            client.send_goal(PlanTrajectoryGoal(request=request))
+        for client in clients:
+            self.assertTrue(client.wait_for_result(rospy.Duration(120.0)))
+        for client, request in zip(clients, requests):
+            self.assertEqual(client.get_state(), GoalStatus.SUCCEEDED)
             result = client.get_result()
             self.assertEqual(result.status, Solution.SUCCESS, result.message)
             self.assertEqual(result.solution.states, self.solve(request).solution.states)
 
     def test_a_queued_goal_cancelled_before_it_starts_is_recalled_without_a_solve(self):
-        running, queued = self.client, self.new_client()
-        running.send_goal(long_goal())
+        # Every worker busy with a long goal, one more goal waits.
+        running = [self.client] + [self.new_client() for _ in range(solver_threads() - 1)]
+        queued = self.new_client()
+        for client in running:
+            client.send_goal(long_goal())
+        self.assertTrue(wait_until(lambda: all(c.get_state() == GoalStatus.ACTIVE
+                                               for c in running)))
         queued.send_goal(PlanTrajectoryGoal(request=small_default(8)))
-        wait_until(lambda: running.get_state() == GoalStatus.ACTIVE)
         time.sleep(0.5)  # the queued goal reaches the server
-        self.assertEqual(running.get_state(), GoalStatus.ACTIVE)
+        for client in running:
+            self.assertEqual(client.get_state(), GoalStatus.ACTIVE)
         self.assertEqual(queued.get_state(), GoalStatus.PENDING)
         queued.cancel_goal()
         self.assertTrue(queued.wait_for_result(rospy.Duration(10.0)))
         self.assertEqual(queued.get_state(), GoalStatus.RECALLED)
         self.assertEqual(queued.get_result().status, Solution.CANCELLED)
         self.assertEqual(queued.get_result().solution.statistics.ipopt_iterations, 0)
-        running.cancel_goal()
-        self.assertTrue(running.wait_for_result(rospy.Duration(10.0)))
-        self.assertEqual(running.get_state(), GoalStatus.PREEMPTED)
+        for client in running:
+            client.cancel_goal()
+            self.assertTrue(client.wait_for_result(rospy.Duration(10.0)))
+            self.assertEqual(client.get_state(), GoalStatus.PREEMPTED)
 
     def test_a_warm_start_is_faster_than_cold_and_falls_back_when_the_scene_changed(self):
         self.assertEqual(self.solve(moved_target(0.0)).status, Solution.SUCCESS)
