@@ -2,13 +2,14 @@
 // update of every iteration. Kernels differ in summation order and in fused multiply-adds, so
 // the same solve took different iterations and ended at different points under reference BLAS,
 // Prescott, Haswell and SkylakeX (the hard cases: 157 to 172 Ipopt iterations). libipopt calls
-// them through its PLT, so the definitions below, in a fixed order and without contraction,
+// them through its PLT, so the definitions below, in a fixed order (no fused multiply-adds:
+// CMakeLists.txt),
 // take their place in every process linking fesd_core: with our LDL^T (no BLAS) a solve is
 // the same bit for bit under every BLAS. MUMPS's own level-3 kernels stay the installed BLAS's.
 #include <algorithm>
 #include <cmath>
 
-#pragma GCC optimize("fp-contract=off")
+#include "../linalg/column_kernels.h"
 
 namespace {
 
@@ -23,16 +24,7 @@ extern "C" {
 
 double ddot_(const int* n, const double* x, const int* incx, const double* y, const int* incy) {
   if (*n <= 0) return 0.0;
-  if (*incx == 1 && *incy == 1) {
-    // Four partial sums, combined in one order: independent additions without reordering.
-    double partial[4] = {0.0, 0.0, 0.0, 0.0};
-    int i = 0;
-    for (; i + 4 <= *n; i += 4) {
-      for (int k = 0; k < 4; ++k) partial[k] += x[i + k] * y[i + k];
-    }
-    for (; i < *n; ++i) partial[0] += x[i] * y[i];
-    return (partial[0] + partial[1]) + (partial[2] + partial[3]);
-  }
+  if (*incx == 1 && *incy == 1) return fesd::linalg::kernels::dot(x, y, *n);
   double sum = 0.0;
   for (long i = 0, ix = firstIndex(*n, *incx), iy = firstIndex(*n, *incy); i < *n;
        ++i, ix += *incx, iy += *incy) {
