@@ -6,9 +6,6 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-// Eigen's dense eigensolver (the reference inertia) trips -Wmaybe-uninitialized inside Eigen
-// with -ffp-contract=off: an error in the warnings-as-errors build.
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <Eigen/Dense>
 
 #include "fesd_trajopt/linalg/multifrontal_ldlt.h"
