@@ -64,7 +64,7 @@ const std::map<std::string, Command>& commands() {
         "    --reference-elements=8 --start=plan|constant (first guess)"}},
       {"robot-push",
        {fesd_bench::robotPush,
-        "A shipped robot push (scene/robot_scenes.h) after the showcase: status, wall time and\n"
+        "A shipped robot push (examples/robot_scenes.h) after the showcase: status, wall time and\n"
         "    ratio, Ipopt iterations per homotopy step, pairs, NLP size, target distance, gaps,\n"
         "    contact and release times per pair. --robot=panda|planar_arm --pairs=lazy|all\n"
         "    --intervals --horizon --elements --stages --budget=150 --margin --verify=true\n"

@@ -74,7 +74,7 @@ int homotopyFailures(const Arguments& args) {
     }
   }
   // A pusher driven at 2 m/s into three discs in a line (test_contact_chains.cpp).
-  fesd::DiscScene chain(2);
+  fesd::Scene chain(2);
   chain.bodies() = {{"pusher", 0.5, Eigen::Vector2d(-3.0, 0.0), true},
                     {"first", 0.5, Eigen::Vector2d(0.0, 0.0), false},
                     {"second", 0.5, Eigen::Vector2d(2.0, 0.0), false},

@@ -16,10 +16,9 @@
 #include "bench_args.h"
 #include "bench_scenes.h"
 #include "commands.h"
+#include "fesd_trajopt/examples/robot_scenes.h"
 #include "fesd_trajopt/linalg/kkt_ordering.h"
 #include "fesd_trajopt/linalg/multifrontal_ldlt.h"
-#include "fesd_trajopt/scene/robot_scenes.h"
-#include "fesd_trajopt/scene/robot_solver.h"
 #include "fesd_trajopt/scene/scene_solver.h"
 #include "fesd_trajopt/solver/kkt_capture.h"
 #include "fesd_trajopt/solver/stopwatch.h"
@@ -180,12 +179,15 @@ std::function<SolveFigures(const std::string&)> sceneSolve(const std::string& sc
                                                            double budget) {
   if (scene == "panda") {
     return [budget](const std::string& linear_solver) {
-      const fesd::RobotTask task = fesd::pandaPushTask(shippedRobot("panda_spherized.urdf"));
-      fesd::RobotSolveOptions options;
+      const fesd::SceneTask task = fesd::pandaPushTask(shippedRobot("panda_spherized.urdf"));
+      fesd::SceneSolveOptions options;
+      options.lazy_pairs = false;
+      options.resume_relaxation = false;
+      options.verify = true;
       options.ocp.homotopy.wall_time_budget = budget;
       options.ocp.homotopy.ipopt.linear_solver = linear_solver;
       fesd::Stopwatch clock;
-      const fesd::RobotOutcome outcome = fesd::solveRobotTask(task, fesd::TaskLimits{}, options);
+      const fesd::SceneOutcome outcome = fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
       return SolveFigures{fesd::statusName(outcome.status), outcome.report.iterations,
                           outcome.report.objective, clock.wallSeconds()};
     };

@@ -1,4 +1,4 @@
-// robot-push: a shipped robot push (scene/robot_scenes.h) solved as solveRobotTask solves it,
+// robot-push: a shipped robot push (examples/robot_scenes.h) solved as solveSceneTask solves it,
 // after the showcase in the same process for the time ratio: status, wall time, Ipopt iterations
 // per homotopy step, pairs in reach / modelled / checked / rounds, the NLP's size, the puck's
 // distance from its target, the smallest gaps at the element boundaries (every pair in reach)
@@ -13,9 +13,8 @@
 #include "bench_args.h"
 #include "bench_scenes.h"
 #include "commands.h"
+#include "fesd_trajopt/examples/robot_scenes.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
-#include "fesd_trajopt/scene/robot_scenes.h"
-#include "fesd_trajopt/scene/robot_solver.h"
 #include "fesd_trajopt/scene/scene_solver.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 #include "showcase_reference.h"
@@ -24,13 +23,13 @@ namespace fesd_bench {
 
 int robotPush(const Arguments& args) {
   const std::string robot = args.text("robot", "panda");
-  fesd::RobotTask task =
+  fesd::SceneTask task =
       robot == "panda"        ? fesd::pandaPushTask(shippedRobot("panda_spherized.urdf"))
       : robot == "planar_arm" ? fesd::planarArmPushTask(shippedRobot("planar_arm.urdf"))
                               : throw std::invalid_argument("--robot=panda|planar_arm");
   task.num_intervals = args.integer("intervals", task.num_intervals);
   task.horizon = args.number("horizon", task.horizon);
-  fesd::RobotSolveOptions options;
+  fesd::SceneSolveOptions options;
   options.ocp.discretization.num_elements =
       args.integer("elements", options.ocp.discretization.num_elements);
   options.ocp.discretization.num_stages =
@@ -38,8 +37,9 @@ int robotPush(const Arguments& args) {
   options.ocp.homotopy.wall_time_budget = args.number("budget", 150.0);
   const std::string pairs = args.text("pairs", "lazy");
   options.lazy_pairs = pairs == "lazy";
+  options.resume_relaxation = false;
   options.pair_margin = args.number("margin", options.pair_margin);
-  options.verify = args.flag("verify", options.verify);
+  options.verify = args.flag("verify", true);
   applyHomotopyArguments(args, options.ocp.homotopy);
   const bool with_showcase = args.flag("showcase", true);
   args.rejectUnused();
@@ -52,20 +52,20 @@ int robotPush(const Arguments& args) {
   const double showcase_seconds = with_showcase ? timeShowcase(showcase_options, "") : 0.0;
 
   fesd::Stopwatch stopwatch;
-  const fesd::RobotOutcome outcome = fesd::solveRobotTask(task, fesd::TaskLimits{}, options);
+  const fesd::SceneOutcome outcome = fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
   const double seconds = stopwatch.wallSeconds();
   if (!outcome.invalid.empty()) {
     std::printf("refused: %s\n", outcome.invalid.c_str());
     return 1;
   }
-  const fesd::RobotScene& scene = task.scene;
-  std::vector<fesd::RobotPair> in_reach;
+  const fesd::Scene& scene = task.scene;
+  std::vector<fesd::ContactPair> in_reach;
   int checked = 0;
-  for (const fesd::RobotPairDecision& decision : outcome.decisions) {
+  for (const fesd::PairDecision& decision : outcome.decisions) {
     if (decision.modelled || decision.checked) in_reach.push_back(decision.pair);
     checked += decision.checked;
   }
-  const fesd::OcpDefinition ocp = fesd::buildRobotOcp(task, outcome.modelled);
+  const fesd::OcpDefinition ocp = fesd::buildOcp(task, outcome.modelled);
   const fesd::OcpSolver last_round(ocp, options.ocp);
   const fesd::NlpAssembly& nlp = last_round.discretization().nlp();
   std::printf("%s push (%s pairs, %d intervals x %d elements x %d stages, T = %g s): %s in %.2f s",

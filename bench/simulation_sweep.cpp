@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "fesd_trajopt/scene/push_scenes.h"
+#include "fesd_trajopt/examples/push_scenes.h"
 
 namespace fesd_bench {
 

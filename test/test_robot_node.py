@@ -31,7 +31,7 @@ INTERVALS, ELEMENTS = 10, 2
 
 
 def arm_push_request():
-    """The shipped push (scene/robot_scenes.h): the arm from (-0.6, 0, 0) pushes a disc of
+    """The shipped push (examples/robot_scenes.h): the arm from (-0.6, 0, 0) pushes a disc of
     radius 0.05 from (0.6, 0) to (0.6, 0.2) in 2 s."""
     request = PlanRequest()
     request.urdf_param = ARM
@@ -201,7 +201,7 @@ class RobotNodeTest(unittest.TestCase):
                                      "sphere")
 
     def test_the_panda_pushes_a_puck_across_the_table(self):
-        # The shipped spatial push (scene/robot_scenes.h, pandaPushTask): the spherized Panda
+        # The shipped spatial push (examples/robot_scenes.h, pandaPushTask): the spherized Panda
         # from its ready pose pushes a puck 0.2 m along x on a table (z >= 0), lazy pairs,
         # inferred spatial; one rung (no accuracy ladder), unverified, as bench robot-push. Its
         # 118 pairs in reach are more than ~robot_all_pairs_up_to: lazy by default.

@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "fesd_trajopt/examples/manipulation_example.h"
+#include "fesd_trajopt/examples/seeded_random.h"
 #include "fesd_trajopt/scene/pair_check.h"
-#include "fesd_trajopt/scene/seeded_random.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 
 namespace fesd {
@@ -16,7 +16,7 @@ namespace planning_scenes {
 namespace {
 
 /// Whether a disc at p (radius r) keeps `gap` clear of every body and obstacle.
-bool fits(const DiscScene& scene, const Eigen::VectorXd& p, double r, double gap) {
+bool fits(const Scene& scene, const Eigen::VectorXd& p, double r, double gap) {
   for (const SceneBody& b : scene.bodies()) {
     if ((b.position - p).norm() < b.radius + r + gap) return false;
   }
@@ -58,7 +58,7 @@ SceneTask randomPush(SeededUniform& random, const Eigen::VectorXd& direction, do
   }
   const double gap = random(0.2, 2.0);
   SceneTask task;
-  task.scene = DiscScene(dim);
+  task.scene = Scene(dim);
   task.scene.bodies() = {
       {"pusher", r_pusher, Eigen::VectorXd((r_pusher + r_puck + gap) * behind), true},
       {"puck", r_puck, Eigen::VectorXd::Zero(dim), false}};
@@ -122,7 +122,7 @@ PlanningScene clutteredScene(unsigned seed) {
   SceneTask task = showcase ? manipulation_example::task(40) : pusherAndPuck(random);
   const int pushed = showcase ? 2 : 1;
   const double scale = showcase ? 1.0 : 0.4;  // extra bodies' radii and gaps
-  DiscScene& scene = task.scene;
+  Scene& scene = task.scene;
   const Eigen::VectorXd start = scene.bodies()[pushed].position;
   const Eigen::VectorXd target = task.bodies[pushed].target;
   const Eigen::VectorXd direction = (target - start).normalized();
@@ -178,9 +178,9 @@ double smallestRelativeGap(const SceneTask& task, const std::vector<PairDecision
   double smallest = std::numeric_limits<double>::infinity();
   for (const PairDecision& decision : decisions) {
     if (!decision.modelled && !decision.checked) continue;
-    const double size = pairSize(task.scene, decision.pair);
+    const double size = task.scene.pairSize(decision.pair);
     for (const Eigen::VectorXd& x : states) {
-      smallest = std::min(smallest, pairGap(task.scene, decision.pair, x) / size);
+      smallest = std::min(smallest, task.scene.pairGap(decision.pair, x) / size);
     }
   }
   return smallest;
@@ -195,7 +195,7 @@ PlanningRun runScene(const PlanningScene& scene, const SceneSolveOptions& option
   run.outcome = solveSceneTask(scene.task, TaskLimits{}, solve);
   run.wall_seconds = solve_time.wallSeconds();
   if (!run.outcome.solved()) return run;
-  const DiscScene& s = scene.task.scene;
+  const Scene& s = scene.task.scene;
   run.target_distance = (s.position(scene.pushed, run.outcome.trajectory.finalState()) -
                          scene.task.bodies[scene.pushed].target)
                             .norm();

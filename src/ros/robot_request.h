@@ -1,15 +1,13 @@
 #pragma once
 
-#include <optional>
 #include <string>
 #include <vector>
 
 #include <fesd_trajopt/JointSpec.h>
 #include <ros/node_handle.h>
 
-#include "fesd_trajopt/scene/robot_task.h"
-#include "node_config.h"
-#include "scene_request.h"
+#include "fesd_trajopt/scene/robot_from_urdf.h"
+#include "fesd_trajopt/scene/scene_task.h"
 
 namespace fesd_ros {
 
@@ -20,23 +18,15 @@ struct RobotFields {
   std::string srdf_param;
 };
 
-/// A robot task built from a request, or why not (error non-empty).
-struct RobotTaskBuild {
-  std::optional<fesd::RobotTask> task;
-  std::string error;
-  std::vector<std::string> notes;  ///< e.g. collision shapes that were ignored
-};
-
 /// Whether a URDF describes a robot: it has revolute, continuous or prismatic joints. Other
-/// URDFs (or ones that do not parse) are disc scenes, whose path reports their errors.
+/// URDFs (or ones that do not parse) are disc scenes (sceneFromUrdf), which report their errors.
 bool isRobotUrdf(const std::string& urdf_xml);
 
-/// The robot of `urdf_xml` (planar inferred unless the request forces it) in a scene of the
-/// request's added bodies, obstacles and walls, with the configured horizon, intervals and
-/// control weight and the request's joint settings. Joint names, roles and numbers are checked
-/// here; the rest (bounds excluding the start, overlaps, sizes) by validateRobotTask.
-RobotTaskBuild buildRobotTask(const NodeConfig& config, const SceneFields& scene,
-                              const RobotFields& robot, const std::string& urdf_xml,
-                              const ros::NodeHandle& node);
+/// The robot read from its URDF put into the task's scene (its free bodies already there) with
+/// the request's joint settings, self-collision and SRDF: joint names, roles and numbers are
+/// checked here, the rest (bounds excluding the start, overlaps, sizes) by validateTask. Returns
+/// "" or why not.
+std::string applyRobotFields(const fesd::RobotForScene& read, const RobotFields& robot,
+                             const ros::NodeHandle& node, fesd::SceneTask& task);
 
 }  // namespace fesd_ros

@@ -13,30 +13,11 @@
 namespace fesd_ros {
 namespace {
 
-/// A pair's two names, a robot sphere first (`<link>/sphere_<k>`, then the body it touches).
-std::pair<std::string, std::string> pairNames(const fesd::RobotScene& scene,
-                                              const fesd::RobotPair& pair) {
-  const auto [body, other] = scene.pairSides(pair);
-  const bool other_is_sphere =
-      pair.kind == fesd::RobotPair::Kind::kBody && scene.collisionBodies()[pair.other].sphere >= 0;
-  if (scene.collisionBodies()[pair.body].sphere < 0 && other_is_sphere) return {other, body};
-  return {body, other};
-}
-
-fesd_trajopt::ContactPair pairMessage(const fesd::RobotScene& scene,
-                                      const fesd::RobotPairDecision& decision) {
-  fesd_trajopt::ContactPair message;
-  std::tie(message.first, message.second) = pairNames(scene, decision.pair);
-  message.reason = decision.reason;
-  message.min_distance = decision.min_distance;
-  return message;
-}
-
 /// The velocity of the actual motion (command plus the contacts' projection) at each element
 /// boundary: the DCS velocity at the boundary state with the multipliers of the element's stage
 /// there (Radau: its last stage is its end; the start takes the first element's first stage).
-std::vector<Eigen::VectorXd> boundaryVelocities(const fesd::RobotTask& task,
-                                                const fesd::RobotOutcome& outcome) {
+std::vector<Eigen::VectorXd> boundaryVelocities(const fesd::SceneTask& task,
+                                                const fesd::SceneOutcome& outcome) {
   const fesd::Trajectory& trajectory = outcome.trajectory;
   std::vector<Eigen::VectorXd> velocities;
   if (trajectory.elements.size() + 1 != trajectory.states.size()) return velocities;
@@ -82,19 +63,11 @@ void fitToRobotScale(const fesd_trajopt::Solution& solution,
 
 }  // namespace
 
-fesd_trajopt::Solution robotSolution(const fesd::RobotTask& task,
-                                     const fesd::RobotOutcome& outcome) {
-  const fesd::RobotScene& scene = task.scene;
-  const fesd::DiscScene& discs = scene.discs();
+void addJointTrajectories(const fesd::SceneTask& task, const fesd::SceneOutcome& outcome,
+                          fesd_trajopt::Solution& solution) {
+  const fesd::Scene& scene = task.scene;
   const fesd::Trajectory& trajectory = outcome.trajectory;
   const int joints = scene.numJoints();
-  fesd_trajopt::Solution solution;
-  fillCommon(trajectory, outcome.report, solution);
-  for (int b = 0; b < static_cast<int>(discs.bodies().size()); ++b) {
-    solution.bodies.push_back(
-        bodyTrajectory(discs.bodies()[b], targetDistance(outcome.target_distances, b), trajectory,
-                       scene.bodyStateIndex(b), joints + discs.controlIndex(b)));
-  }
   trajectory_msgs::JointTrajectory& motion = solution.joint_trajectory;
   trajectory_msgs::JointTrajectory& commands = solution.joint_commands;
   for (const fesd::KinematicJoint& joint : scene.robot().joints) {
@@ -121,30 +94,14 @@ fesd_trajopt::Solution robotSolution(const fesd::RobotTask& task,
     }
     commands.points.push_back(point);
   }
-  for (const fesd::RobotPairDecision& decision : outcome.decisions) {
-    (decision.modelled  ? solution.modeled_pairs
-     : decision.checked ? solution.checked_pairs
-                        : solution.pruned_pairs)
-        .push_back(pairMessage(scene, decision));
-  }
-  for (const fesd::SwitchEvent& event : trajectory.switches) {
-    const auto [first, second] = pairNames(scene, outcome.modelled[event.constraint]);
-    solution.switches.push_back(switchMessage(event, first, second));
-  }
-  return solution;
 }
 
-visualization_msgs::MarkerArray robotMarkers(const fesd::RobotTask& task,
-                                             const fesd_trajopt::Solution& solution,
-                                             const std::string& frame_id) {
-  fesd::SceneTask objects;
-  objects.scene = task.scene.discs();
-  objects.bodies = task.bodies;
-  visualization_msgs::MarkerArray markers = sceneMarkers(objects, solution, frame_id);
+void addRobotMarkers(const fesd::SceneTask& task, const fesd_trajopt::Solution& solution,
+                     const std::string& frame_id, visualization_msgs::MarkerArray& markers) {
   fitToRobotScale(solution, markers);
   const fesd::KinematicModel& robot = task.scene.robot();
   const auto& points = solution.joint_trajectory.points;
-  if (points.empty()) return markers;
+  if (points.empty()) return;
   // After sceneMarkers' ids, so that no marker replaces another.
   int id = static_cast<int>(markers.markers.size());
   fesd::KinematicData data;
@@ -171,12 +128,12 @@ visualization_msgs::MarkerArray robotMarkers(const fesd::RobotTask& task,
       sphere(ns, point(data.sphere_centres[s]), robot.spheres[s].radius, bodyColor(true, alpha));
     }
     // A free body with several spheres: each where the body is at that boundary.
-    const auto& free_spheres = task.scene.freeBodySpheres();
-    for (size_t b = 0; b < free_spheres.size() && b < solution.bodies.size(); ++b) {
+    const std::vector<fesd::SceneBody>& free_bodies = task.scene.bodies();
+    for (size_t b = 0; b < free_bodies.size() && b < solution.bodies.size(); ++b) {
       const auto& positions = solution.bodies[b].positions;
       if (k >= positions.size()) continue;
       const Eigen::Vector3d body(positions[k].x, positions[k].y, positions[k].z);
-      for (const fesd::FreeBodySphere& s : free_spheres[b]) {
+      for (const fesd::FreeBodySphere& s : free_bodies[b].spheres) {
         sphere(ns, point(body + s.offset), s.radius, bodyColor(false, alpha));
       }
     }
@@ -188,7 +145,6 @@ visualization_msgs::MarkerArray robotMarkers(const fesd::RobotTask& task,
     while (k + 1 < solution.times.size() && solution.times[k] < event.time - 1e-12) ++k;
     spheres("robot_switch_configurations", std::min(k, points.size() - 1), 0.15);
   }
-  return markers;
 }
 
 }  // namespace fesd_ros

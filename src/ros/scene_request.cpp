@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <set>
 
 #include "fesd_trajopt/scene/urdf_scene.h"
+#include "robot_request.h"
 
 namespace fesd_ros {
 namespace {
@@ -45,6 +47,55 @@ std::string requestedBounds(const std::vector<double>& values, int dim, Eigen::V
   return "";
 }
 
+/// The request's allowed_pairs as the task's; "" or why not.
+std::string allowPairs(const std::vector<fesd_trajopt::ContactPair>& allowed,
+                       fesd::SceneTask& task) {
+  const std::vector<fesd::ContactPair> all = task.scene.allPairs();
+  for (const fesd_trajopt::ContactPair& entry : allowed) {
+    bool found = false;
+    for (const fesd::ContactPair& pair : all) {
+      const auto [a, b] = task.scene.pairSides(pair);
+      if ((fesd::namesSide(entry.first, a) && fesd::namesSide(entry.second, b)) ||
+          (fesd::namesSide(entry.second, a) && fesd::namesSide(entry.first, b))) {
+        task.allowed_pairs.push_back(pair);
+        found = true;
+      }
+    }
+    if (!found) {
+      return "allowed pair " + entry.first + "/" + entry.second +
+             " names no pair of the scene (unknown name, two fixed items, or spheres that never "
+             "pair)";
+    }
+  }
+  return "";
+}
+
+/// The robot of `urdf_xml` (planar inferred unless the request forces it) into `read`; notes on
+/// ignored shapes; "" or why not (a request's radius for a body the URDF gives several spheres).
+std::string readRobot(const NodeConfig& config, const SceneFields& request,
+                      const std::string& urdf_xml, fesd::RobotForScene& read,
+                      std::vector<std::string>& notes) {
+  const fesd::PlanarChoice choice = !request.planar_override ? fesd::PlanarChoice::kInferred
+                                    : request.planar         ? fesd::PlanarChoice::kPlanar
+                                                             : fesd::PlanarChoice::kSpatial;
+  fesd::KinematicModelOptions limits;
+  limits.max_spheres = config.limits.max_spheres;
+  read = fesd::robotForScene(urdf_xml, choice, limits);
+  if (!read.error.empty()) return read.error;
+  for (const std::string& shape : read.robot->ignored_shapes) {
+    notes.push_back("collision " + shape + " is not a sphere and is ignored");
+  }
+  for (const fesd::SceneBody& free : read.free_bodies) {
+    for (const fesd_trajopt::BodySpec& spec : request.bodies) {
+      if (spec.name == free.name && spec.radius > 0.0 && !free.spheres.empty()) {
+        return "body '" + free.name + "' carries " + std::to_string(free.spheres.size()) +
+               " collision spheres in the URDF: its size comes from them, not a radius";
+      }
+    }
+  }
+  return "";
+}
+
 }  // namespace
 
 std::string urdfSource(const NodeConfig& config, const SceneFields& request,
@@ -64,18 +115,6 @@ std::string urdfSource(const NodeConfig& config, const SceneFields& request,
     return "no scene: give urdf or urdf_param, or start the node with ~scene_urdf";
   }
   xml = config.scene_urdf;
-  return "";
-}
-
-std::string otherName(const fesd::DiscScene& scene, const fesd::ContactPair& pair) {
-  switch (pair.kind) {
-    case fesd::ContactPair::Kind::kBody:
-      return scene.bodies()[pair.other].name;
-    case fesd::ContactPair::Kind::kObstacle:
-      return scene.obstacles()[pair.other].name;
-    case fesd::ContactPair::Kind::kWall:
-      return scene.walls()[pair.other].name;
-  }
   return "";
 }
 
@@ -190,41 +229,45 @@ std::string applySceneFields(const NodeConfig& config, const SceneFields& reques
   return "";
 }
 
-TaskBuild buildTask(const NodeConfig& config, const SceneFields& request,
+TaskBuild buildTask(const NodeConfig& config, const SceneFields& request, const RobotFields& robot,
                     const ros::NodeHandle& node) {
   TaskBuild build;
   std::string xml;
   build.error = urdfSource(config, request, node, xml);
   if (!build.error.empty()) return build;
-  const bool planar = request.planar_override ? request.planar : config.planar;
-  fesd::UrdfScene urdf = fesd::sceneFromUrdf(xml, planar);
-  if (!urdf.error.empty()) {
-    build.error = urdf.error;
-    return build;
-  }
-  for (const std::string& link : urdf.ignored_links) {
-    build.notes.push_back("link '" + link + "' has no usable collision geometry and is ignored");
-  }
   fesd::SceneTask& task = build.task;
-  task.scene = urdf.scene;
-  build.error = applySceneFields(config, request, task);
-  if (!build.error.empty()) return build;
-  const std::vector<fesd::ContactPair> all = task.scene.allPairs();
-  for (const fesd_trajopt::ContactPair& allowed : request.allowed_pairs) {
-    bool found = false;
-    for (const fesd::ContactPair& pair : all) {
-      const std::string a = task.scene.bodies()[pair.body].name, b = otherName(task.scene, pair);
-      if ((a == allowed.first && b == allowed.second) ||
-          (a == allowed.second && b == allowed.first)) {
-        task.allowed_pairs.push_back(pair);
-        found = true;
-      }
-    }
-    if (!found) {
-      build.error = "allowed pair " + allowed.first + "/" + allowed.second +
-                    " names no pair of the scene (unknown name, or two fixed items)";
+  std::optional<fesd::RobotForScene> read;
+  if (isRobotUrdf(xml)) {
+    build.error = readRobot(config, request, xml, read.emplace(), build.notes);
+    if (!build.error.empty()) return build;
+    task.scene = fesd::Scene(read->dimension);
+    task.scene.bodies() = read->free_bodies;  // the URDF's pucks, configured like its discs
+  } else {
+    if (!robot.joints.empty()) {
+      build.error = "joints are given, but the scene's URDF has no moving joints";
       return build;
     }
+    const bool planar = request.planar_override ? request.planar : config.planar;
+    fesd::UrdfScene urdf = fesd::sceneFromUrdf(xml, planar);
+    if (!urdf.error.empty()) {
+      build.error = urdf.error;
+      return build;
+    }
+    for (const std::string& link : urdf.ignored_links) {
+      build.notes.push_back("link '" + link + "' has no usable collision geometry and is ignored");
+    }
+    task.scene = urdf.scene;
+  }
+  build.error = applySceneFields(config, request, task);
+  if (build.error.empty() && read) build.error = applyRobotFields(*read, robot, node, task);
+  if (build.error.empty()) build.error = allowPairs(request.allowed_pairs, task);
+  if (!build.error.empty() || !read) return build;
+  // applySceneFields writes "no bounds" as +-infinity; a robot task wants none at all (finite
+  // ones are refused by validateTask, naming the body).
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  for (fesd::BodyTask& body : task.bodies) {
+    if ((body.workspace_lower.array() == -kInf).all()) body.workspace_lower.resize(0);
+    if ((body.workspace_upper.array() == kInf).all()) body.workspace_upper.resize(0);
   }
   return build;
 }

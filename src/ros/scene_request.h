@@ -11,6 +11,7 @@
 
 #include "fesd_trajopt/scene/scene_task.h"
 #include "node_config.h"
+#include "robot_request.h"
 
 namespace fesd_ros {
 
@@ -39,8 +40,10 @@ struct TaskBuild {
 };
 
 /// The configured defaults, the request's scene source and overrides: the scene task (horizon
-/// and intervals from the configuration; the caller applies the request's).
-TaskBuild buildTask(const NodeConfig& config, const SceneFields& request,
+/// and intervals from the configuration; the caller applies the request's). A URDF with moving
+/// joints is a robot (robotForScene, its free links free bodies) among the request's bodies,
+/// obstacles and walls; any other a scene of discs or spheres (sceneFromUrdf).
+TaskBuild buildTask(const NodeConfig& config, const SceneFields& request, const RobotFields& robot,
                     const ros::NodeHandle& node);
 
 /// The request's scene URDF (its urdf, else the parameter urdf_param, else ~scene_urdf) into
@@ -52,8 +55,5 @@ std::string urdfSource(const NodeConfig& config, const SceneFields& request,
 /// task.scene (horizon and intervals from the configuration); returns "" or why not.
 std::string applySceneFields(const NodeConfig& config, const SceneFields& request,
                              fesd::SceneTask& task);
-
-/// The name of a pair's second member (body, obstacle or wall).
-std::string otherName(const fesd::DiscScene& scene, const fesd::ContactPair& pair);
 
 }  // namespace fesd_ros

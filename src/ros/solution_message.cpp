@@ -3,9 +3,12 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
-#include "scene_request.h"
+#include "robot_solution.h"
 
 namespace fesd_ros {
 namespace {
@@ -20,11 +23,21 @@ XyzMessage xyz(const Eigen::VectorXd& v) {
   return result;
 }
 
-fesd_trajopt::ContactPair pairMessage(const fesd::DiscScene& scene,
+/// A pair's two names, a robot sphere first (`<link>/sphere_<k>`, then the body it touches).
+std::pair<std::string, std::string> pairNames(const fesd::Scene& scene,
+                                              const fesd::ContactPair& pair) {
+  const auto [body, other] = scene.pairSides(pair);
+  const std::vector<fesd::CollisionBody> bodies = scene.collisionBodies();
+  const bool other_is_sphere =
+      pair.kind == fesd::ContactPair::Kind::kBody && bodies[pair.other].sphere >= 0;
+  if (bodies[pair.body].sphere < 0 && other_is_sphere) return {other, body};
+  return {body, other};
+}
+
+fesd_trajopt::ContactPair pairMessage(const fesd::Scene& scene,
                                       const fesd::PairDecision& decision) {
   fesd_trajopt::ContactPair message;
-  message.first = scene.bodies()[decision.pair.body].name;
-  message.second = otherName(scene, decision.pair);
+  std::tie(message.first, message.second) = pairNames(scene, decision.pair);
   message.reason = decision.reason;
   message.min_distance = decision.min_distance;
   return message;
@@ -183,7 +196,7 @@ std::vector<nav_msgs::Path> bodyPaths(const fesd_trajopt::Solution& solution) {
 
 fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
                                      const fesd::SceneOutcome& outcome) {
-  const fesd::DiscScene& scene = task.scene;
+  const fesd::Scene& scene = task.scene;
   const fesd::Trajectory& trajectory = outcome.trajectory;
   const fesd::MpccReport& report = outcome.report;
   const std::vector<fesd::PairDecision>& decisions = outcome.decisions;
@@ -194,26 +207,24 @@ fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
         bodyTrajectory(scene.bodies()[b], targetDistance(outcome.target_distances, b), trajectory,
                        scene.stateIndex(b), scene.controlIndex(b)));
   }
-  std::vector<fesd::ContactPair> modelled;
   for (const fesd::PairDecision& decision : decisions) {
     (decision.modelled  ? solution.modeled_pairs
      : decision.checked ? solution.checked_pairs
                         : solution.pruned_pairs)
         .push_back(pairMessage(scene, decision));
-    if (decision.modelled) modelled.push_back(decision.pair);
   }
   for (const fesd::SwitchEvent& event : trajectory.switches) {
-    const fesd::ContactPair& pair = modelled[event.constraint];
-    solution.switches.push_back(
-        switchMessage(event, scene.bodies()[pair.body].name, otherName(scene, pair)));
+    const auto [first, second] = pairNames(scene, outcome.modelled[event.constraint]);
+    solution.switches.push_back(switchMessage(event, first, second));
   }
+  if (scene.hasRobot()) addJointTrajectories(task, outcome, solution);
   return solution;
 }
 
 visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
                                              const fesd_trajopt::Solution& solution,
                                              const std::string& frame_id) {
-  const fesd::DiscScene& scene = task.scene;
+  const fesd::Scene& scene = task.scene;
   const bool planar = scene.dimension() == 2;
   visualization_msgs::MarkerArray markers;
   visualization_msgs::Marker clear;
@@ -323,6 +334,7 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
     plate.color = color(0.6, 0.2, 0.2, 0.8);
     markers.markers.push_back(plate);
   }
+  if (task.scene.hasRobot()) addRobotMarkers(task, solution, frame_id, markers);
   return markers;
 }
 

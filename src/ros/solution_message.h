@@ -24,8 +24,9 @@ void setUnsolved(Answer& answer, uint8_t status, const std::string& message) {
 }
 
 /// The Solution message of a scene task's outcome: times, each body's positions, controls and
-/// distance from its target, the full state, switches (named by the modelled pairs), statistics
-/// and pair decisions.
+/// distance from its target, the full state, switches and pair decisions (named by the pairs'
+/// sides, a robot sphere `<link>/sphere_<k>` first), statistics; with a robot its
+/// joint_trajectory and joint_commands (addJointTrajectories).
 fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
                                      const fesd::SceneOutcome& outcome);
 
@@ -63,7 +64,7 @@ std::vector<nav_msgs::Path> bodyPaths(const fesd_trajopt::Solution& solution);
 
 /// rviz markers of a scene solution, one namespace per layer (bodies_start, bodies_final,
 /// targets, paths, switch_configurations, switch_labels, obstacles, walls), preceded by a
-/// DELETEALL.
+/// DELETEALL; with a robot, its spheres too (addRobotMarkers).
 visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
                                              const fesd_trajopt::Solution& solution,
                                              const std::string& frame_id);

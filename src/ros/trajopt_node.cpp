@@ -10,8 +10,6 @@
 #include "fesd_trajopt/scene/scene_solver.h"
 #include "fesd_trajopt/solver/heap_policy.h"
 #include "fesd_trajopt/solver/stopwatch.h"
-#include "robot_request.h"
-#include "robot_solution.h"
 #include "scene_request.h"
 #include "solution_message.h"
 
@@ -133,6 +131,66 @@ std::string topicName(std::string name) {
   return name;
 }
 
+/// The request's body commands into the controls (per step); "" or why not.
+std::string bodyCommands(const std::vector<fesd_trajopt::BodyTrajectory>& commands,
+                         const fesd::Scene& scene, std::vector<Eigen::VectorXd>& controls) {
+  const int dim = scene.dimension(), steps = static_cast<int>(controls.size());
+  for (const fesd_trajopt::BodyTrajectory& command : commands) {
+    int b = -1;
+    for (size_t i = 0; i < scene.bodies().size(); ++i) {
+      if (scene.bodies()[i].name == command.name) b = static_cast<int>(i);
+    }
+    if (b < 0 || !scene.bodies()[b].actuated) {
+      return "a command names '" + command.name + "', not an actuated body";
+    }
+    if (command.controls.size() != 1 && static_cast<int>(command.controls.size()) != steps) {
+      return "the command of '" + command.name + "' needs 1 or " + std::to_string(steps) +
+             " controls";
+    }
+    for (int k = 0; k < steps; ++k) {
+      const geometry_msgs::Vector3& v = command.controls[command.controls.size() == 1 ? 0 : k];
+      Eigen::VectorXd u(dim);
+      u(0) = v.x;
+      u(1) = v.y;
+      if (dim == 3) u(2) = v.z;
+      if (!u.allFinite()) return "the command of '" + command.name + "' is not finite";
+      controls[k].segment(scene.controlIndex(b), dim) = u;
+    }
+  }
+  return "";
+}
+
+/// The request's joint commands (velocities, one point for all steps or one per step) into the
+/// controls; "" or why not.
+std::string jointCommands(const trajectory_msgs::JointTrajectory& commands,
+                          const fesd::Scene& scene, std::vector<Eigen::VectorXd>& controls) {
+  if (commands.joint_names.empty()) return "";
+  if (!scene.hasRobot()) return "joint_commands are given, but the scene has no robot";
+  const int steps = static_cast<int>(controls.size());
+  if (commands.points.size() != 1 && static_cast<int>(commands.points.size()) != steps) {
+    return "joint_commands needs 1 or " + std::to_string(steps) + " points, got " +
+           std::to_string(commands.points.size());
+  }
+  for (size_t i = 0; i < commands.joint_names.size(); ++i) {
+    const int j = scene.robot().jointIndex(commands.joint_names[i]);
+    if (j < 0) {
+      return "joint_commands names '" + commands.joint_names[i] +
+             "', not a moving joint of the robot";
+    }
+    for (int k = 0; k < steps; ++k) {
+      const auto& point = commands.points[commands.points.size() == 1 ? 0 : k];
+      if (point.velocities.size() != commands.joint_names.size()) {
+        return "each point of joint_commands needs one velocity per joint name";
+      }
+      if (!std::isfinite(point.velocities[i])) {
+        return "the command of joint '" + commands.joint_names[i] + "' is not finite";
+      }
+      controls[k](j) = point.velocities[i];
+    }
+  }
+  return "";
+}
+
 }  // namespace
 
 TrajoptNode::TrajoptNode(ros::NodeHandle node, ros::NodeHandle private_node)
@@ -193,26 +251,24 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
                              const fesd::SolveMonitor* monitor,
                              fesd_trajopt::PlanTrajectoryResult& answer) {
   fesd::Stopwatch stopwatch;
-  std::string xml;
-  if (urdfSource(config_, sceneFields(request), private_node_, xml).empty() && isRobotUrdf(xml)) {
-    return handleRobotPlan(request, xml, monitor, answer);
-  }
-  if (!request.joints.empty()) {
-    return refuse(answer, "joints are given, but the scene's URDF has no moving joints");
-  }
-  TaskBuild build = buildTask(config_, sceneFields(request), private_node_);
+  TaskBuild build =
+      buildTask(config_, sceneFields(request),
+                {request.joints, request.self_collision != 0, request.srdf_param}, private_node_);
   if (!build.error.empty()) return refuse(answer, build.error);
   fesd::SceneTask& task = build.task;
+  const bool robot = task.scene.hasRobot();
   if (request.has_horizon) task.horizon = request.horizon;
   if (request.has_num_intervals) task.num_intervals = static_cast<int>(request.num_intervals);
   fesd::SceneSolveOptions options;
   const std::string problem = solveOptions(request, config_, options.ocp);
   if (!problem.empty()) return refuse(answer, problem);
-  options.verify = request.verify;
-  options.lazy_pairs = request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_DEFAULT
-                           ? config_.lazy_pairs
-                           : request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_LAZY;
+  const bool by_default = request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_DEFAULT;
+  options.lazy_pairs = by_default ? config_.lazy_pairs
+                                  : request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_LAZY;
+  options.all_pairs_up_to = robot && by_default ? config_.robot_all_pairs_up_to : 0;
+  options.resume_relaxation = !robot;  // see SceneSolveOptions::resume_relaxation
   options.pair_margin = config_.contact_margin;
+  options.verify = request.verify;
   options.verification.num_stages = config_.verification_stages;
   options.verification.num_elements = config_.verification_elements;
   options.monitor = monitor;
@@ -229,6 +285,11 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
   if (!outcome.invalid.empty()) return refuse(answer, outcome.invalid);
   if (!outcome.infeasible.empty()) return answerInfeasible(answer, outcome.infeasible);
   ROS_INFO_STREAM("fesd_trajopt: solved "
+                  << (robot
+                          ? "a robot of " + std::to_string(task.scene.numJoints()) +
+                                " joints and " + std::to_string(task.scene.robot().spheres.size()) +
+                                " spheres with "
+                          : std::string())
                   << outcome.moving_bodies.size() << " moving of " << task.scene.bodies().size()
                   << " bodies, " << outcome.modelledPairs() << " modelled / "
                   << outcome.checkedPairs() << " checked / "
@@ -240,7 +301,8 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
   solution = sceneSolution(task, outcome);
   solution.status = statusCode(outcome.status);
   solution.message = outcome.message;  // with the warning on unresolved switches
-  solution.statistics.start = fesd::startName(outcome.start, "push plan", "previous round");
+  solution.statistics.start =
+      fesd::startName(outcome.start, robot ? "robot guess" : "push plan", "previous round");
   solution.statistics.pair_rounds = outcome.pair_rounds;
   solution.statistics.warm_started = outcome.warm_started;
   solution.statistics.nlp_variables = outcome.sizes.variables;
@@ -260,7 +322,6 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
   if (fesd::solvedItsNlp(outcome.status)) {  // a solution of its NLP: it can warm-start
     std::lock_guard<std::mutex> lock(last_solution_mutex_);
     last_solution_ = std::make_shared<const fesd::SceneOutcome>(outcome);
-    last_robot_solution_.reset();
   }
   publish(task, solution);
 }
@@ -269,6 +330,16 @@ void TrajoptNode::publish(const fesd::SceneTask& task, const fesd_trajopt::Solut
   std::lock_guard<std::mutex> lock(publish_mutex_);
   solution_publisher_.publish(solution);
   marker_publisher_.publish(sceneMarkers(task, solution, config_.frame_id));
+  // A robot's root is the scene's origin: robot_state_publisher's TF tree hangs from it.
+  const std::string root = task.scene.hasRobot() ? task.scene.robot().root_link : "";
+  if (!root.empty() && root != config_.frame_id) {
+    geometry_msgs::TransformStamped frame;
+    frame.header.stamp = ros::Time::now();
+    frame.header.frame_id = config_.frame_id;
+    frame.child_frame_id = root;
+    frame.transform.rotation.w = 1.0;
+    frame_broadcaster_.sendTransform(frame);
+  }
   publishPaths(solution);
   playback_.play(solution, task.scene.dimension() == 2);
 }
@@ -334,202 +405,21 @@ void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
     return refuse(response, "unknown system '" + request.system +
                                 "' (\"\" for the scene, or \"circle_example\")");
   }
-  std::string xml;
-  if (urdfSource(config_, sceneFields(request), private_node_, xml).empty() && isRobotUrdf(xml)) {
-    return handleRobotSimulate(request, xml, steps, options, response);
-  }
-  if (!request.joints.empty() || !request.joint_commands.joint_names.empty()) {
-    return refuse(response, "joints are given, but the scene's URDF has no moving joints");
-  }
-  TaskBuild build = buildTask(config_, sceneFields(request), private_node_);
+  TaskBuild build =
+      buildTask(config_, sceneFields(request), {request.joints, false, ""}, private_node_);
   if (!build.error.empty()) return refuse(response, build.error);
   fesd::SceneTask& task = build.task;
   if (request.has_horizon) task.horizon = request.horizon;
   task.num_intervals = steps;
-  const fesd::DiscScene& scene = task.scene;
-  const int dim = scene.dimension();
-  std::vector<Eigen::VectorXd> controls(steps, Eigen::VectorXd::Zero(scene.controlSize()));
-  for (const fesd_trajopt::BodyTrajectory& command : request.commands) {
-    int b = -1;
-    for (size_t i = 0; i < scene.bodies().size(); ++i) {
-      if (scene.bodies()[i].name == command.name) b = static_cast<int>(i);
-    }
-    if (b < 0 || !scene.bodies()[b].actuated) {
-      return refuse(response, "a command names '" + command.name + "', not an actuated body");
-    }
-    if (command.controls.size() != 1 && static_cast<int>(command.controls.size()) != steps) {
-      return refuse(response, "the command of '" + command.name + "' needs 1 or " +
-                                  std::to_string(steps) + " controls");
-    }
-    for (int k = 0; k < steps; ++k) {
-      const geometry_msgs::Vector3& v = command.controls[command.controls.size() == 1 ? 0 : k];
-      Eigen::VectorXd u(dim);
-      u(0) = v.x;
-      u(1) = v.y;
-      if (dim == 3) u(2) = v.z;
-      if (!u.allFinite())
-        return refuse(response, "the command of '" + command.name + "' is not finite");
-      controls[k].segment(scene.controlIndex(b), dim) = u;
-    }
-  }
+  std::vector<Eigen::VectorXd> controls(steps, Eigen::VectorXd::Zero(task.scene.controlSize()));
+  std::string problem = bodyCommands(request.commands, task.scene, controls);
+  if (problem.empty()) problem = jointCommands(request.joint_commands, task.scene, controls);
+  if (!problem.empty()) return refuse(response, problem);
   const fesd::SceneOutcome outcome =
       fesd::simulateSceneTask(task, controls, config_.limits, options);
   if (!outcome.invalid.empty()) return refuse(response, outcome.invalid);
   response.solution = sceneSolution(task, outcome);
   response.solution.message = outcome.message;
-  response.solution.header.stamp = ros::Time::now();
-  response.solution.header.frame_id = config_.frame_id;
-  response.solution.statistics.wall_time = stopwatch.wallSeconds();
-  finish(response, build.notes);
-}
-
-void TrajoptNode::handleRobotPlan(const fesd_trajopt::PlanRequest& request,
-                                  const std::string& urdf_xml, const fesd::SolveMonitor* monitor,
-                                  fesd_trajopt::PlanTrajectoryResult& answer) {
-  fesd::Stopwatch stopwatch;
-  RobotTaskBuild build = buildRobotTask(
-      config_, sceneFields(request),
-      {request.joints, request.self_collision != 0, request.srdf_param}, urdf_xml, private_node_);
-  if (!build.error.empty()) return refuse(answer, build.error);
-  fesd::RobotTask& task = *build.task;
-  if (request.has_horizon) task.horizon = request.horizon;
-  if (request.has_num_intervals) task.num_intervals = static_cast<int>(request.num_intervals);
-  fesd::RobotSolveOptions options;
-  const std::string problem = solveOptions(request, config_, options.ocp);
-  if (!problem.empty()) return refuse(answer, problem);
-  const bool by_default = request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_DEFAULT;
-  options.lazy_pairs = request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_LAZY ||
-                       (by_default && config_.lazy_pairs);
-  options.all_pairs_up_to = by_default ? config_.robot_all_pairs_up_to : 0;
-  options.pair_margin = config_.contact_margin;
-  options.verify = request.verify;
-  options.verification.num_stages = config_.verification_stages;
-  options.verification.num_elements = config_.verification_elements;
-  options.monitor = monitor;
-  std::shared_ptr<const fesd::RobotOutcome> previous;
-  if (request.warm_start) {
-    std::lock_guard<std::mutex> lock(last_solution_mutex_);
-    previous = last_robot_solution_;
-  }
-  options.previous = previous.get();
-  const double accuracy = targetAccuracy(request, config_);
-  const fesd::RobotOutcome outcome =
-      accuracy > 0.0 ? fesd::solveRobotToAccuracy(task, config_.limits, options, accuracy)
-                     : fesd::solveRobotTask(task, config_.limits, options);
-  if (!outcome.invalid.empty()) return refuse(answer, outcome.invalid);
-  int modelled = 0;
-  for (const fesd::RobotPairDecision& decision : outcome.decisions) modelled += decision.modelled;
-  ROS_INFO_STREAM("fesd_trajopt: solved a robot of "
-                  << task.scene.numJoints() << " joints and " << task.scene.robot().spheres.size()
-                  << " spheres with " << task.bodies.size() << " bodies, " << modelled
-                  << " modelled of " << outcome.decisions.size() << " pairs in "
-                  << outcome.pair_rounds << " round(s), " << task.num_intervals << " intervals");
-  fesd_trajopt::Solution& solution = answer.solution;
-  solution = robotSolution(task, outcome);
-  solution.status = statusCode(outcome.status);
-  solution.message = outcome.message;
-  solution.statistics.start = fesd::startName(outcome.start, "robot guess", "previous round");
-  solution.statistics.pair_rounds = outcome.pair_rounds;
-  solution.statistics.warm_started = outcome.warm_started;
-  solution.statistics.nlp_variables = outcome.sizes.variables;
-  solution.statistics.nlp_constraints = outcome.sizes.constraints;
-  solution.statistics.complementarity_constraints = outcome.sizes.complementarities;
-  fillAccuracy(!std::isnan(outcome.verification_error), outcome.verification_error,
-               outcome.refinements, solution);
-  solution.header.stamp = ros::Time::now();
-  solution.header.frame_id = config_.frame_id;
-  solution.statistics.wall_time = stopwatch.wallSeconds();
-  solution.statistics.cpu_time = stopwatch.cpuSeconds();
-  if (request.warm_start && !solution.statistics.warm_started) {
-    build.notes.push_back("cold start: " + (previous ? outcome.cold_start_reason
-                                                     : std::string("no previous solution")));
-  }
-  finish(answer, build.notes);
-  ROS_INFO_STREAM("fesd_trajopt: " << answer.message << " (" << stopwatch.wallSeconds() << " s)");
-  if (fesd::solvedItsNlp(outcome.status)) {  // a solution of its NLP: it can warm-start
-    std::lock_guard<std::mutex> lock(last_solution_mutex_);
-    last_robot_solution_ = std::make_shared<const fesd::RobotOutcome>(outcome);
-    last_solution_.reset();
-  }
-  publishRobot(task, solution);
-}
-
-void TrajoptNode::publishRobot(const fesd::RobotTask& task,
-                               const fesd_trajopt::Solution& solution) {
-  std::lock_guard<std::mutex> lock(publish_mutex_);
-  solution_publisher_.publish(solution);
-  marker_publisher_.publish(robotMarkers(task, solution, config_.frame_id));
-  // The robot's root is the scene's origin: robot_state_publisher's TF tree hangs from it.
-  const std::string& root = task.scene.robot().root_link;
-  if (!root.empty() && root != config_.frame_id) {
-    geometry_msgs::TransformStamped frame;
-    frame.header.stamp = ros::Time::now();
-    frame.header.frame_id = config_.frame_id;
-    frame.child_frame_id = root;
-    frame.transform.rotation.w = 1.0;
-    frame_broadcaster_.sendTransform(frame);
-  }
-  publishPaths(solution);
-  playback_.play(solution, task.scene.dimension() == 2);
-}
-
-void TrajoptNode::handleRobotSimulate(const fesd_trajopt::Simulate::Request& request,
-                                      const std::string& urdf_xml, int steps,
-                                      const fesd::SimulationOptions& options,
-                                      fesd_trajopt::Simulate::Response& response) {
-  fesd::Stopwatch stopwatch;
-  if (!request.commands.empty()) {
-    return refuse(response, "robot scenes take joint_commands; body commands are not supported");
-  }
-  RobotTaskBuild build = buildRobotTask(config_, sceneFields(request), {request.joints, false, ""},
-                                        urdf_xml, private_node_);
-  if (!build.error.empty()) return refuse(response, build.error);
-  fesd::RobotTask& task = *build.task;
-  if (request.has_horizon) task.horizon = request.horizon;
-  task.num_intervals = steps;
-  const std::string invalid = fesd::validateRobotTask(task, config_.limits);
-  if (!invalid.empty()) return refuse(response, invalid);
-  const fesd::RobotScene& scene = task.scene;
-  std::vector<Eigen::VectorXd> controls(steps, Eigen::VectorXd::Zero(scene.controlSize()));
-  const trajectory_msgs::JointTrajectory& commands = request.joint_commands;
-  if (!commands.joint_names.empty() && commands.points.size() != 1 &&
-      static_cast<int>(commands.points.size()) != steps) {
-    return refuse(response, "joint_commands needs 1 or " + std::to_string(steps) + " points, got " +
-                                std::to_string(commands.points.size()));
-  }
-  for (size_t i = 0; i < commands.joint_names.size(); ++i) {
-    const int j = scene.robot().jointIndex(commands.joint_names[i]);
-    if (j < 0) {
-      return refuse(response, "joint_commands names '" + commands.joint_names[i] +
-                                  "', not a moving joint of the robot");
-    }
-    for (int k = 0; k < steps; ++k) {
-      const auto& point = commands.points[commands.points.size() == 1 ? 0 : k];
-      if (point.velocities.size() != commands.joint_names.size()) {
-        return refuse(response, "each point of joint_commands needs one velocity per joint name");
-      }
-      if (!std::isfinite(point.velocities[i])) {
-        return refuse(response,
-                      "the command of joint '" + commands.joint_names[i] + "' is not finite");
-      }
-      controls[k](j) = point.velocities[i];
-    }
-  }
-  // Every pair that can touch within the horizon is modelled (decideRobotPairs).
-  fesd::RobotOutcome outcome;
-  outcome.decisions = fesd::decideRobotPairs(task);
-  for (const fesd::RobotPairDecision& decision : outcome.decisions) {
-    if (decision.modelled) outcome.modelled.push_back(decision.pair);
-  }
-  fesd::FesdIntegrator integrator(scene.model(outcome.modelled), options);
-  const fesd::SimulationResult result =
-      integrator.simulate(scene.initialState(), task.horizon, steps, controls);
-  outcome.status = result.status;
-  outcome.trajectory = result.trajectory;
-  outcome.report = result.totals;
-  response.solution = robotSolution(task, outcome);
-  response.solution.status = statusCode(result.status);
-  response.solution.message = result.message;
   response.solution.header.stamp = ros::Time::now();
   response.solution.header.frame_id = config_.frame_id;
   response.solution.statistics.wall_time = stopwatch.wallSeconds();

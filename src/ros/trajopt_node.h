@@ -12,9 +12,8 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 
 #include "fesd_trajopt/integrator/fesd_integrator.h"
-#include "fesd_trajopt/scene/robot_solver.h"
-#include "fesd_trajopt/scene/robot_task.h"
 #include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/scene/scene_task.h"
 #include "node_config.h"
 #include "plan_action.h"
 #include "playback.h"
@@ -46,17 +45,8 @@ class TrajoptNode {
             fesd_trajopt::PlanTrajectoryResult& answer);
   void handlePlan(const fesd_trajopt::PlanRequest& request, const fesd::SolveMonitor* monitor,
                   fesd_trajopt::PlanTrajectoryResult& answer);
-  /// A plan request whose URDF is a robot (isRobotUrdf).
-  void handleRobotPlan(const fesd_trajopt::PlanRequest& request, const std::string& urdf_xml,
-                       const fesd::SolveMonitor* monitor,
-                       fesd_trajopt::PlanTrajectoryResult& answer);
   void publish(const fesd::SceneTask& task, const fesd_trajopt::Solution& solution);
-  void publishRobot(const fesd::RobotTask& task, const fesd_trajopt::Solution& solution);
   void publishPaths(const fesd_trajopt::Solution& solution);
-  void handleRobotSimulate(const fesd_trajopt::Simulate::Request& request,
-                           const std::string& urdf_xml, int steps,
-                           const fesd::SimulationOptions& options,
-                           fesd_trajopt::Simulate::Response& response);
   void handleSimulate(const fesd_trajopt::Simulate::Request& request,
                       fesd_trajopt::Simulate::Response& response);
 
@@ -70,9 +60,7 @@ class TrajoptNode {
   std::mutex publish_mutex_;
   Playback playback_;
   std::mutex last_solution_mutex_;
-  // For warm starts: the last plan, of a disc scene or of a robot (the other is then empty).
-  std::shared_ptr<const fesd::SceneOutcome> last_solution_;
-  std::shared_ptr<const fesd::RobotOutcome> last_robot_solution_;
+  std::shared_ptr<const fesd::SceneOutcome> last_solution_;  ///< for warm starts
   PlanActionServer plan_server_;  ///< last: its worker thread uses everything above
 };
 

@@ -13,7 +13,47 @@ struct PairLayout {
   std::vector<int> variables;  ///< ascending state indices
   std::vector<int> a_slots, b_slots;
   bool curved = false;  ///< a robot sphere is involved: c has third derivatives
+  /// The structural nonzeros in local variables (addStructuralEntries): of grad c, of Hess c
+  /// (both triangles) and the rows of Hess c that hold any.
+  std::vector<int> gradient_entries, hessian_rows;
+  std::vector<std::pair<int, int>> hessian_entries;
+  /// A translating pair's Hessian at hessian_entries: constant (+-2).
+  std::vector<double> hessian_constants;
 };
+
+/// A curved pair's derivatives are dense. A translating centre moves its coordinate d with one
+/// variable, so c couples coordinate d of the two sides only: per d, (a, a), and with a second
+/// centre (b, b), (b, a), (a, b); a wall's gradient lacks the coordinates its normal lacks and
+/// its Hessian is zero. No zero reaches the NLP's sparsity.
+void addStructuralEntries(const CentrePair& pair, PairLayout& layout) {
+  const int n = static_cast<int>(layout.variables.size());
+  if (layout.curved) {
+    for (int i = 0; i < n; ++i) {
+      layout.gradient_entries.push_back(i);
+      layout.hessian_rows.push_back(i);
+      for (int j = 0; j < n; ++j) layout.hessian_entries.emplace_back(i, j);
+    }
+    return;
+  }
+  const bool wall = pair.kind == CentrePair::Kind::kWall;
+  for (size_t d = 0; d < layout.a_slots.size(); ++d) {
+    const int a = layout.a_slots[d];
+    if (!wall || pair.point(d) != 0.0) layout.gradient_entries.push_back(a);
+    if (wall) continue;
+    layout.hessian_rows.push_back(a);
+    layout.hessian_entries.emplace_back(a, a);
+    layout.hessian_constants.push_back(2.0);
+    if (pair.kind != CentrePair::Kind::kCentre) continue;
+    const int b = layout.b_slots[d];
+    layout.hessian_rows.push_back(b);
+    layout.hessian_entries.emplace_back(b, b);
+    layout.hessian_entries.emplace_back(std::max(a, b), std::min(a, b));
+    layout.hessian_entries.emplace_back(std::min(a, b), std::max(a, b));
+    layout.hessian_constants.insert(layout.hessian_constants.end(), {2.0, -2.0, -2.0});
+  }
+  layout.gradient_entries.insert(layout.gradient_entries.end(), layout.b_slots.begin(),
+                                 layout.b_slots.end());
+}
 
 PairLayout layoutOf(const CentreEvaluator& evaluator, const CentrePair& pair) {
   PairLayout layout;
@@ -35,6 +75,7 @@ PairLayout layoutOf(const CentreEvaluator& evaluator, const CentrePair& pair) {
   };
   layout.curved =
       is_sphere(pair.a) || (pair.kind == CentrePair::Kind::kCentre && is_sphere(pair.b));
+  addStructuralEntries(pair, layout);
   return layout;
 }
 
@@ -143,6 +184,53 @@ class PairSet {
   LocalPair local(int k) const { return LocalPair(evaluator_, system_.pairs[k], layouts_[k]); }
   double value(int k) const { return centrePairValue(evaluator_, system_.pairs[k]); }
 
+  /// Pair k's gradient at its gradient_entries. A translating pair's without a LocalPair: no
+  /// allocation in the evaluations' inner loop (a scene of discs has only such pairs).
+  void gradient(int k, double* values) const {
+    const PairLayout& layout = layouts_[k];
+    const CentrePair& pair = system_.pairs[k];
+    if (layout.curved) {
+      const Eigen::VectorXd g = local(k).gradient();
+      for (size_t e = 0; e < layout.gradient_entries.size(); ++e) {
+        values[e] = g(layout.gradient_entries[e]);
+      }
+      return;
+    }
+    int e = 0;
+    if (pair.kind == CentrePair::Kind::kWall) {
+      for (size_t d = 0; d < layout.a_slots.size(); ++d) {
+        if (pair.point(d) != 0.0) values[e++] = pair.point(d);
+      }
+      return;
+    }
+    Eigen::Vector3d difference = evaluator_.position(pair.a);
+    difference -= pair.kind == CentrePair::Kind::kCentre ? evaluator_.position(pair.b) : pair.point;
+    for (size_t d = 0; d < layout.a_slots.size(); ++d) values[e++] = 2.0 * difference(d);
+    for (size_t d = 0; d < layout.b_slots.size(); ++d) values[e++] = -2.0 * difference(d);
+  }
+
+  /// Pair k's Hessian at its hessian_entries.
+  void hessian(int k, double* values) const {
+    const PairLayout& layout = layouts_[k];
+    if (!layout.curved) {
+      std::copy(layout.hessian_constants.begin(), layout.hessian_constants.end(), values);
+      return;
+    }
+    const Eigen::MatrixXd h = local(k).hessian();
+    for (size_t e = 0; e < layout.hessian_entries.size(); ++e) {
+      values[e] = h(layout.hessian_entries[e].first, layout.hessian_entries[e].second);
+    }
+  }
+
+  /// The most gradient or Hessian entries of a pair: the size of the buffers above.
+  size_t maxEntries() const {
+    size_t most = 0;
+    for (const PairLayout& layout : layouts_) {
+      most = std::max({most, layout.gradient_entries.size(), layout.hessian_entries.size()});
+    }
+    return most;
+  }
+
  private:
   CentrePairSystem system_;
   mutable CentreEvaluator evaluator_;
@@ -155,15 +243,18 @@ class CentreConstraints : public SmoothFunction {
   explicit CentreConstraints(std::shared_ptr<const PairSet> pairs) : pairs_(std::move(pairs)) {
     PatternBuilder hessian;
     for (int k = 0; k < pairs_->size(); ++k) {
-      const std::vector<int>& v = pairs_->layout(k).variables;
-      for (int a : v) jacobian_.add(k, a);
-      std::vector<int> slots;
-      for (size_t i = 0; i < v.size(); ++i) {
-        for (size_t j = 0; j <= i; ++j) slots.push_back(hessian.slot(v[i], v[j]));
+      const PairLayout& layout = pairs_->layout(k);
+      const std::vector<int>& v = layout.variables;
+      for (int i : layout.gradient_entries) jacobian_.add(k, v[i]);
+      std::vector<HessianSlot> slots;
+      for (size_t e = 0; e < layout.hessian_entries.size(); ++e) {
+        const auto [i, j] = layout.hessian_entries[e];
+        if (j <= i) slots.push_back({static_cast<int>(e), hessian.slot(v[i], v[j])});
       }
       hessian_slots_.push_back(slots);
     }
     hessian_ = hessian.pattern;
+    scratch_.resize(pairs_->maxEntries());
   }
 
   int inputSize() const override { return pairs_->system().state_size; }
@@ -177,8 +268,8 @@ class CentreConstraints : public SmoothFunction {
     pairs_->setState(x);
     int e = 0;
     for (int k = 0; k < outputSize(); ++k) {
-      const Eigen::VectorXd g = pairs_->local(k).gradient();
-      for (int i = 0; i < g.size(); ++i) values[e++] = g(i);
+      pairs_->gradient(k, values + e);
+      e += static_cast<int>(pairs_->layout(k).gradient_entries.size());
     }
   }
   const SparsityPattern& hessianPattern() const override { return hessian_; }
@@ -187,18 +278,21 @@ class CentreConstraints : public SmoothFunction {
     pairs_->setState(x);
     for (int k = 0; k < outputSize(); ++k) {
       if (weights[k] == 0.0) continue;
-      const Eigen::MatrixXd h = pairs_->local(k).hessian();
-      int s = 0;
-      for (int i = 0; i < h.rows(); ++i) {
-        for (int j = 0; j <= i; ++j) values[hessian_slots_[k][s++]] += weights[k] * h(i, j);
+      pairs_->hessian(k, scratch_.data());
+      for (const HessianSlot& e : hessian_slots_[k]) {
+        values[e.slot] += weights[k] * scratch_[e.entry];
       }
     }
   }
 
  private:
+  struct HessianSlot {
+    int entry, slot;  ///< of the lower triangle's hessian_entries
+  };
   std::shared_ptr<const PairSet> pairs_;
   SparsityPattern jacobian_, hessian_;
-  std::vector<std::vector<int>> hessian_slots_;  ///< per pair, its lower triangle row by row
+  std::vector<std::vector<HessianSlot>> hessian_slots_;  ///< per pair
+  mutable std::vector<double> scratch_;
 };
 
 /// v(x, u, lambda) = B u + sum_k lambda_k grad c_k(x).
@@ -217,18 +311,26 @@ class CentreVelocity : public SmoothFunction {
       const std::vector<int>& v = layout.variables;
       const int n = static_cast<int>(v.size());
       PairSlots slots;
-      for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) slots.curvature.push_back(jacobian.slot(v[i], v[j]));
-        slots.gradient.push_back(jacobian.slot(v[i], nx_ + nu_ + k));
+      for (const auto& [i, j] : layout.hessian_entries) {
+        slots.curvature.push_back(jacobian.slot(v[i], v[j]));
       }
-      for (int i = 0; i < n; ++i) slots.mixed.push_back(hessian.slot(nx_ + nu_ + k, v[i]));
+      for (int i : layout.hessian_rows) slots.mixed.push_back(hessian.slot(nx_ + nu_ + k, v[i]));
       for (int i = 0; layout.curved && i < n; ++i) {
         for (int j = 0; j <= i; ++j) slots.third.push_back(hessian.slot(v[i], v[j]));
       }
       slots_.push_back(slots);
     }
+    // The lambda columns after every curvature entry: the x block's entries come first.
+    for (int k = 0; k < pairs_->size(); ++k) {
+      const PairLayout& layout = pairs_->layout(k);
+      for (int i : layout.gradient_entries) {
+        slots_[k].gradient.push_back(jacobian.slot(layout.variables[i], nx_ + nu_ + k));
+      }
+    }
     jacobian_ = jacobian.pattern;
     hessian_ = hessian.pattern;
+    gradient_.resize(pairs_->maxEntries());
+    hessian_values_.resize(pairs_->maxEntries());
   }
 
   int inputSize() const override { return nx_ + nu_ + pairs_->size(); }
@@ -241,9 +343,11 @@ class CentreVelocity : public SmoothFunction {
     for (int k = 0; k < pairs_->size(); ++k) {
       const double lambda = z[nx_ + nu_ + k];
       if (lambda == 0.0) continue;
-      const Eigen::VectorXd g = pairs_->local(k).gradient();
-      const std::vector<int>& variables = pairs_->layout(k).variables;
-      for (int i = 0; i < g.size(); ++i) v[variables[i]] += lambda * g(i);
+      const PairLayout& layout = pairs_->layout(k);
+      pairs_->gradient(k, gradient_.data());
+      for (size_t e = 0; e < layout.gradient_entries.size(); ++e) {
+        v[layout.variables[layout.gradient_entries[e]]] += lambda * gradient_[e];
+      }
     }
   }
 
@@ -253,14 +357,15 @@ class CentreVelocity : public SmoothFunction {
     for (int slot : actuation_slots_) values[slot] += 1.0;
     pairs_->setState(z);
     for (int k = 0; k < pairs_->size(); ++k) {
-      const LocalPair local = pairs_->local(k);
       const double lambda = z[nx_ + nu_ + k];
-      const Eigen::VectorXd g = local.gradient();
-      const Eigen::MatrixXd h = local.hessian();
-      const int n = static_cast<int>(g.size());
-      for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) values[slots_[k].curvature[i * n + j]] += lambda * h(i, j);
-        values[slots_[k].gradient[i]] += g(i);
+      const PairLayout& layout = pairs_->layout(k);
+      pairs_->gradient(k, gradient_.data());
+      pairs_->hessian(k, hessian_values_.data());
+      for (size_t e = 0; e < layout.hessian_entries.size(); ++e) {
+        values[slots_[k].curvature[e]] += lambda * hessian_values_[e];
+      }
+      for (size_t e = 0; e < layout.gradient_entries.size(); ++e) {
+        values[slots_[k].gradient[e]] += gradient_[e];
       }
     }
   }
@@ -272,12 +377,28 @@ class CentreVelocity : public SmoothFunction {
     for (int k = 0; k < pairs_->size(); ++k) {
       const PairLayout& layout = pairs_->layout(k);
       const int n = static_cast<int>(layout.variables.size());
+      const auto weight = [&](int i) { return weights[layout.variables[i]]; };
+      bool weighted = false;
+      for (int i = 0; i < n; ++i) weighted = weighted || weight(i) != 0.0;
+      if (!weighted) continue;
+      if (!layout.curved) {  // d^2 (w . v) / d lambda_k dx = Hess c_k w, Hess c_k constant
+        Eigen::Matrix<double, 6, 1> mixed = Eigen::Matrix<double, 6, 1>::Zero();
+        for (size_t e = 0; e < layout.hessian_entries.size(); ++e) {
+          const auto [i, j] = layout.hessian_entries[e];
+          mixed(i) += layout.hessian_constants[e] * weight(j);
+        }
+        for (size_t r = 0; r < layout.hessian_rows.size(); ++r) {
+          values[slots_[k].mixed[r]] += mixed(layout.hessian_rows[r]);
+        }
+        continue;
+      }
       Eigen::VectorXd w(n);
-      for (int i = 0; i < n; ++i) w(i) = weights[layout.variables[i]];
-      if (w.isZero(0.0)) continue;
+      for (int i = 0; i < n; ++i) w(i) = weight(i);
       const LocalPair local = pairs_->local(k);
       const Eigen::VectorXd mixed = local.hessian() * w;  // d^2 (w . v) / d lambda_k dx
-      for (int i = 0; i < n; ++i) values[slots_[k].mixed[i]] += mixed(i);
+      for (size_t r = 0; r < layout.hessian_rows.size(); ++r) {
+        values[slots_[k].mixed[r]] += mixed(layout.hessian_rows[r]);
+      }
       const double lambda = z[nx_ + nu_ + k];
       if (!layout.curved || lambda == 0.0) continue;
       const Eigen::MatrixXd t = local.thirdDerivative(w);
@@ -294,6 +415,7 @@ class CentreVelocity : public SmoothFunction {
   };
   std::shared_ptr<const PairSet> pairs_;
   int nx_, nu_;
+  mutable std::vector<double> gradient_, hessian_values_;  ///< one pair's, PairSet's buffers
   std::vector<int> actuation_slots_;
   std::vector<PairSlots> slots_;
   SparsityPattern jacobian_, hessian_;

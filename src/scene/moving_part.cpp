@@ -5,15 +5,19 @@
 namespace fesd {
 namespace {
 
-bool involves(const ContactPair& pair, int body) {
-  return pair.body == body || (pair.kind == ContactPair::Kind::kBody && pair.other == body);
+/// Whether a pair has a collision body of free body `body` on either side.
+bool involves(const std::vector<CollisionBody>& bodies, const ContactPair& pair, int body) {
+  return bodies[pair.body].free_body == body ||
+         (pair.kind == ContactPair::Kind::kBody && bodies[pair.other].free_body == body);
 }
 
-/// A state of the full scene: the frozen bodies at their start, the moving ones from `moving`.
+/// A state of the full scene: the joints and moving bodies from `moving`, the frozen bodies at
+/// their start.
 Eigen::VectorXd fullState(const SceneTask& full, const MovingPart& part,
                           const Eigen::VectorXd& moving) {
   const int dim = full.scene.dimension();
   Eigen::VectorXd state = full.scene.initialState();
+  state.head(full.scene.numJoints()) = moving.head(full.scene.numJoints());
   for (size_t i = 0; i < part.bodies.size(); ++i) {
     state.segment(full.scene.stateIndex(part.bodies[i]), dim) =
         moving.segment(part.task.scene.stateIndex(static_cast<int>(i)), dim);
@@ -21,11 +25,12 @@ Eigen::VectorXd fullState(const SceneTask& full, const MovingPart& part,
   return state;
 }
 
-/// A state of the moving part: its bodies' positions in a full scene state.
+/// A state of the moving part: the joints and its bodies' positions in a full scene state.
 Eigen::VectorXd partState(const SceneTask& full, const MovingPart& part,
                           const Eigen::VectorXd& state) {
   const int dim = full.scene.dimension();
   Eigen::VectorXd moving(part.task.scene.stateSize());
+  moving.head(full.scene.numJoints()) = state.head(full.scene.numJoints());
   for (size_t i = 0; i < part.bodies.size(); ++i) {
     moving.segment(part.task.scene.stateIndex(static_cast<int>(i)), dim) =
         state.segment(full.scene.stateIndex(part.bodies[i]), dim);
@@ -59,21 +64,30 @@ MovingPart movingPart(const SceneTask& task, const std::vector<PairDecision>& de
   for (const PairDecision& d : decisions) {
     if (d.modelled) modelled.push_back(d.pair);
   }
+  const std::vector<CollisionBody> bodies = task.scene.collisionBodies();
   MovingPart part;
   part.task = task;
   part.task.scene.bodies().clear();
   part.task.bodies.clear();
   part.task.allowed_pairs.clear();
-  std::vector<int> new_index(task.scene.bodies().size(), -1);
   for (int b = 0; b < static_cast<int>(task.scene.bodies().size()); ++b) {
     const bool moves = task.scene.bodies()[b].actuated ||
                        std::any_of(modelled.begin(), modelled.end(),
-                                   [&](const ContactPair& p) { return involves(p, b); });
+                                   [&](const ContactPair& p) { return involves(bodies, p, b); });
     if (!moves) continue;
-    new_index[b] = static_cast<int>(part.bodies.size());
     part.bodies.push_back(b);
     part.task.scene.bodies().push_back(task.scene.bodies()[b]);
     part.task.bodies.push_back(task.bodies[b]);
+  }
+  // The part keeps the order of bodies and spheres: a moving body's collision bodies come next.
+  std::vector<int> new_index(bodies.size(), -1);
+  int next_free = 0;
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].sphere >= 0) {
+      new_index[i] = part.task.scene.sphereBody(bodies[i].sphere);
+    } else if (std::count(part.bodies.begin(), part.bodies.end(), bodies[i].free_body)) {
+      new_index[i] = next_free++;
+    }
   }
   part.modelled_in_task = modelled;
   for (ContactPair pair : modelled) {

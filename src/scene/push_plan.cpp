@@ -129,7 +129,7 @@ bool involves(const ContactPair& pair, int body) {
 }
 
 /// d c / d p_body of a pair's constraint at x (0 when the body is not in the pair).
-Eigen::VectorXd gradientOn(const DiscScene& scene, const ContactPair& pair, int body,
+Eigen::VectorXd gradientOn(const Scene& scene, const ContactPair& pair, int body,
                            const Eigen::VectorXd& x) {
   const Eigen::VectorXd p = scene.position(pair.body, x);
   switch (pair.kind) {
@@ -159,7 +159,7 @@ class PlannedMotion {
         pushes_(pushes),
         contact_(contact_time),
         release_(release_time) {
-    const DiscScene& scene = task_.scene;
+    const Scene& scene = task_.scene;
     for (size_t b = 0; b < scene.bodies().size(); ++b) {
       const int body = static_cast<int>(b);
       const BodyTask& t = task_.bodies[b];
@@ -188,7 +188,7 @@ class PlannedMotion {
   /// the simulated bodies, which they move exactly as the projection did, then those of the
   /// pushed bodies, which also carry the reactions of what they shove.
   Eigen::VectorXd multipliers(double t) const {
-    const DiscScene& scene = task_.scene;
+    const Scene& scene = task_.scene;
     const Eigen::VectorXd x = state(t), v = velocity(t);
     Eigen::VectorXd lambda = Eigen::VectorXd::Zero(pairs_.size());
     std::vector<int> shoving, pushing;
@@ -197,7 +197,7 @@ class PlannedMotion {
       const int other = pair.kind == ContactPair::Kind::kBody ? pair.other : pair.body;
       const bool passive_side =
           !scene.bodies()[pair.body].actuated || !scene.bodies()[other].actuated;
-      if (!passive_side || pairGap(scene, pair, x) > kContactGap * pairSize(scene, pair)) continue;
+      if (!passive_side || scene.pairGap(pair, x) > kContactGap * scene.pairSize(pair)) continue;
       (simulated_[pair.body] || simulated_[other] ? shoving : pushing)
           .push_back(static_cast<int>(k));
     }
@@ -209,7 +209,7 @@ class PlannedMotion {
   /// The mean control of [begin, end]: the mean planned velocity of the actuated bodies minus
   /// the mean contact reaction on them (piecewise by the phases, 4 midpoints per piece).
   Eigen::VectorXd meanControl(double begin, double end) const {
-    const DiscScene& scene = task_.scene;
+    const Scene& scene = task_.scene;
     const int dim = scene.dimension();
     const Eigen::VectorXd velocity = (state(end) - state(begin)) / (end - begin);
     std::vector<double> breaks{begin};
@@ -271,7 +271,7 @@ class PlannedMotion {
   /// A pushed body's straight path, moved sideways around the obstacles and off the walls of
   /// its pairs.
   Eigen::VectorXd pushedPosition(int body, double t) const {
-    const DiscScene& scene = task_.scene;
+    const Scene& scene = task_.scene;
     const Eigen::VectorXd from = start(body), to = goal(body, from);
     Eigen::VectorXd p = along(from, to, (t - contact_) / std::max(release_ - contact_, 1e-300));
     if ((to - from).norm() == 0.0) return p;
@@ -310,7 +310,7 @@ class PlannedMotion {
   /// of what they would pass through (obstacles, bodies they do not push, walls), in a fixed
   /// order, and stay in their workspaces. Simulated bodies keep their positions in x.
   void placePlannedBodies(double t, Eigen::VectorXd& x) const {
-    const DiscScene& scene = task_.scene;
+    const Scene& scene = task_.scene;
     const int dim = scene.dimension(), count = static_cast<int>(scene.bodies().size());
     for (int b = 0; b < count; ++b) {
       if (!simulated_[b]) x.segment(scene.stateIndex(b), dim) = plannedPosition(b, t);
@@ -339,7 +339,7 @@ class PlannedMotion {
   /// simulated ones only, or the others) with velocity v, given the forces already in lambda.
   void fitForces(const std::vector<int>& active, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                  Eigen::VectorXd& lambda, bool simulated_bodies) const {
-    const DiscScene& scene = task_.scene;
+    const Scene& scene = task_.scene;
     std::vector<int> moved;
     for (int k : active) {
       for (int b : {pairs_[k].body, pairs_[k].kind == ContactPair::Kind::kBody ? pairs_[k].other
@@ -378,7 +378,7 @@ class PlannedMotion {
 
   /// Moves simulated body b out of everything its pairs name, as the projection would.
   void shove(int b, Eigen::VectorXd& x) const {
-    const DiscScene& scene = task_.scene;
+    const Scene& scene = task_.scene;
     const int dim = scene.dimension();
     Eigen::VectorXd p = x.segment(scene.stateIndex(b), dim);
     const double radius = scene.bodies()[b].radius;
@@ -412,7 +412,7 @@ class PlannedMotion {
   /// (actuated ones stepping around the simulated ones where they were), then every simulated
   /// body is shoved out of what overlaps it.
   void simulate() {
-    const DiscScene& scene = task_.scene;
+    const Scene& scene = task_.scene;
     double smallest_radius = std::numeric_limits<double>::infinity();
     for (const SceneBody& body : scene.bodies()) {
       smallest_radius = std::min(smallest_radius, body.radius);
@@ -471,7 +471,7 @@ int bodyPairIndex(const std::vector<ContactPair>& pairs, int a, int b) {
 std::vector<PushAssignment> placePushers(const SceneTask& task,
                                          const std::vector<ContactPair>& pairs, int pushed,
                                          const Eigen::VectorXd& end, std::vector<bool>& busy) {
-  const DiscScene& scene = task.scene;
+  const Scene& scene = task.scene;
   const Eigen::VectorXd start = scene.bodies()[pushed].position;
   const std::vector<Eigen::VectorXd> candidates = candidateDirections((end - start).normalized());
   std::vector<PushAssignment> placed;
@@ -573,7 +573,7 @@ PushTimes leastPhaseTimes(const SceneTask& planned, const std::vector<PushAssign
 /// Whether a body ends at p clear of the obstacles and walls; with `path_from`, pushed straight
 /// there from that start without meeting an obstacle (a replacement end behind an obstacle would
 /// need a push around it).
-bool clearEnd(const DiscScene& scene, int body, const Eigen::VectorXd& p,
+bool clearEnd(const Scene& scene, int body, const Eigen::VectorXd& p,
               const Eigen::VectorXd* path_from = nullptr) {
   const double radius = scene.bodies()[body].radius;
   for (const SceneObstacle& obstacle : scene.obstacles()) {
@@ -629,7 +629,7 @@ double bisect(double reachable, double unreachable, int halvings,
 /// pushable), marked time_limited when only the time rules the target out.
 PushPlan::ShortPush pushableEnd(const SceneTask& task, const std::vector<ContactPair>& pairs,
                                 int pushed, const std::vector<bool>& busy) {
-  const DiscScene& scene = task.scene;
+  const Scene& scene = task.scene;
   const Eigen::VectorXd start = scene.bodies()[pushed].position;
   const Eigen::VectorXd target = task.bodies[pushed].target;
   // Whether pushers can be placed to push the body to `end`, and whether also in time.
@@ -679,7 +679,7 @@ PushPlan::ShortPush pushableEnd(const SceneTask& task, const std::vector<Contact
 }  // namespace
 
 PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs) {
-  const DiscScene& scene = task.scene;
+  const Scene& scene = task.scene;
   const int count = static_cast<int>(scene.bodies().size()), dim = scene.dimension();
   PushPlan plan;
   SceneTask planned = task;  // with the pushed bodies' ends the pushers can reach

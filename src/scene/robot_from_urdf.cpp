@@ -10,7 +10,7 @@ namespace {
 
 /// A free link as a passive free body (RobotForScene::free_bodies), or why it cannot be one.
 std::string freeLinkBody(const KinematicModel& robot, const FreeLink& free, int dimension,
-                         SceneBody& body, std::vector<FreeBodySphere>& spheres) {
+                         SceneBody& body) {
   const std::string who = "free link '" + free.link + "' (joint '" + free.joint + "')";
   const int parent = robot.linkIndex(free.parent_link);
   if (parent < 0 || robot.links[parent].joint >= 0) {
@@ -38,14 +38,13 @@ std::string freeLinkBody(const KinematicModel& robot, const FreeLink& free, int 
     mean += centres.back() / static_cast<double>(free.spheres.size());
   }
   body = {free.link, 0.0, mean, false};
-  spheres.clear();
   for (size_t s = 0; s < free.spheres.size(); ++s) {
     const Eigen::VectorXd offset = centres[s] - mean;
     body.radius = std::max(body.radius, offset.norm() + free.spheres[s].radius);
     if (free.spheres.size() == 1) break;  // the body itself is its sphere
     Eigen::Vector3d padded = Eigen::Vector3d::Zero();
     padded.head(dimension) = offset;
-    spheres.push_back({free.spheres[s].name, padded, free.spheres[s].radius});
+    body.spheres.push_back({free.spheres[s].name, padded, free.spheres[s].radius});
   }
   return "";
 }
@@ -53,11 +52,9 @@ std::string freeLinkBody(const KinematicModel& robot, const FreeLink& free, int 
 std::string freeLinkBodies(const KinematicModel& robot, int dimension, RobotForScene& result) {
   for (const FreeLink& free : robot.free_links) {
     SceneBody body;
-    std::vector<FreeBodySphere> spheres;
-    const std::string error = freeLinkBody(robot, free, dimension, body, spheres);
+    const std::string error = freeLinkBody(robot, free, dimension, body);
     if (!error.empty()) return error;
     result.free_bodies.push_back(body);
-    result.free_body_spheres.push_back(spheres);
   }
   return "";
 }

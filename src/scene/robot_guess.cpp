@@ -11,11 +11,11 @@ namespace fesd {
 namespace {
 
 /// The first passive free body with a weighted target, -1 if none.
-int pushedBody(const RobotTask& task) {
-  const DiscScene& discs = task.scene.discs();
-  for (size_t b = 0; b < discs.bodies().size(); ++b) {
+int pushedBody(const SceneTask& task) {
+  const Scene& scene = task.scene;
+  for (size_t b = 0; b < scene.bodies().size(); ++b) {
     const BodyTask& t = task.bodies[b];
-    if (!discs.bodies()[b].actuated && t.target.size() && t.target_weight > 0.0) {
+    if (!scene.bodies()[b].actuated && t.target.size() && t.target_weight > 0.0) {
       return static_cast<int>(b);
     }
   }
@@ -29,17 +29,17 @@ Eigen::Vector3d padded(const Eigen::VectorXd& v) {
 }
 
 /// The push plan of the sphere as a disc pushing the body among the obstacles and walls.
-PushPlan proxyPlan(const RobotTask& task, int sphere, int body, const Eigen::Vector3d& start) {
-  const RobotScene& scene = task.scene;
+PushPlan proxyPlan(const SceneTask& task, int sphere, int body, const Eigen::Vector3d& start) {
+  const Scene& scene = task.scene;
   const int dim = scene.dimension();
   SceneTask proxy;
-  proxy.scene = DiscScene(dim);
+  proxy.scene = Scene(dim);
   const KinematicSphere& s = scene.robot().spheres[sphere];
   proxy.scene.bodies().push_back({s.name, s.radius, start.head(dim), true});
-  proxy.scene.bodies().push_back(scene.discs().bodies()[body]);
+  proxy.scene.bodies().push_back(scene.bodies()[body]);
   proxy.scene.bodies().back().actuated = false;
-  proxy.scene.obstacles() = scene.discs().obstacles();
-  proxy.scene.walls() = scene.discs().walls();
+  proxy.scene.obstacles() = scene.obstacles();
+  proxy.scene.walls() = scene.walls();
   proxy.bodies.resize(2);
   // The sphere's speed in the scene is the joints' doing, not one bound: no time limit here.
   proxy.bodies[0].max_speed = std::numeric_limits<double>::infinity();
@@ -52,7 +52,7 @@ PushPlan proxyPlan(const RobotTask& task, int sphere, int body, const Eigen::Vec
 
 /// The collision body of the pushed body that the proxy's push touches: of a body with several
 /// spheres, the one whose surface is nearest the pushing disc at the contact time.
-int touchedCollisionBody(const RobotScene& scene, int body, const PushPlan& plan) {
+int touchedCollisionBody(const Scene& scene, int body, const PushPlan& plan) {
   const std::vector<int> candidates = scene.freeBodyCollisionBodies(body);
   if (candidates.size() == 1) return candidates.front();
   const int dim = scene.dimension();
@@ -83,14 +83,14 @@ Eigen::VectorXd interpolate(const std::vector<Eigen::VectorXd>& values, double h
 
 }  // namespace
 
-int pushingSphere(const RobotTask& task, int pushed_body) {
+int pushingSphere(const SceneTask& task, int pushed_body) {
   const auto passive = [](const JointTask& joint) { return joint.passive; };
   if (std::all_of(task.joints.begin(), task.joints.end(), passive)) return -1;
   const KinematicModel& robot = task.scene.robot();
   int tool_joint = -1;
   for (const KinematicSphere& s : robot.spheres)
     tool_joint = std::max(tool_joint, robot.links[s.link].joint);
-  const SceneBody& body = task.scene.discs().bodies().at(pushed_body);
+  const SceneBody& body = task.scene.bodies().at(pushed_body);
   const BodyTask& t = task.bodies.at(pushed_body);
   Eigen::Vector3d direction = padded(t.target) - padded(body.position);
   if (direction.norm() > 0.0) direction.normalize();
@@ -113,9 +113,9 @@ int pushingSphere(const RobotTask& task, int pushed_body) {
   return best;
 }
 
-RobotGuess planRobotGuess(const RobotTask& task, const std::vector<RobotPair>& pairs,
+RobotGuess planRobotGuess(const SceneTask& task, const std::vector<ContactPair>& pairs,
                           int elements_per_interval) {
-  const RobotScene& scene = task.scene;
+  const Scene& scene = task.scene;
   const int nq = scene.numJoints();
   const int boundaries = task.num_intervals * elements_per_interval + 1;
   RobotGuess result;
@@ -151,11 +151,11 @@ RobotGuess planRobotGuess(const RobotTask& task, const std::vector<RobotPair>& p
       result.boundary_joints.push_back(q);
     }
     const int body = result.pushed_body, dim = scene.dimension();
-    const int first = scene.bodyStateIndex(body);
+    const int first = scene.stateIndex(body);
     const auto plan_state = plan.guess.state;
     const auto plan_multipliers = plan.guess.multipliers;
-    const RobotPair contact{touchedCollisionBody(scene, body, plan), RobotPair::Kind::kBody,
-                            scene.sphereBody(result.pusher_sphere)};
+    const ContactPair contact{touchedCollisionBody(scene, body, plan), ContactPair::Kind::kBody,
+                              scene.sphereBody(result.pusher_sphere)};
     const auto found = std::find(pairs.begin(), pairs.end(), contact);
     const int contact_index = found == pairs.end() ? -1 : static_cast<int>(found - pairs.begin());
     const int num_pairs = static_cast<int>(pairs.size());

@@ -1,6 +1,7 @@
 #include "fesd_trajopt/scene/scene_solver.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -9,6 +10,7 @@
 #include "fesd_trajopt/scene/moving_part.h"
 #include "fesd_trajopt/scene/pair_check.h"
 #include "fesd_trajopt/scene/push_plan.h"
+#include "fesd_trajopt/scene/robot_guess.h"
 #include "fesd_trajopt/solver/memory_estimate.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 
@@ -36,6 +38,9 @@ MovingPart movingPartOf(const SceneTask& task, SceneOutcome& outcome) {
 PlanStructure planStructure(const SceneTask& task, const SceneOutcome& outcome,
                             const DiscretizationOptions& discretization) {
   std::vector<std::string> moving, pairs;
+  for (int j = 0; j < task.scene.numJoints(); ++j) {
+    moving.push_back("joint " + task.scene.robot().joints[j].name);
+  }
   for (int b : outcome.moving_bodies) moving.push_back(movingBodyName(task.scene.bodies()[b]));
   for (const PairDecision& decision : outcome.decisions) {
     if (decision.modelled) pairs.push_back(task.scene.pairName(decision.pair));
@@ -53,14 +58,34 @@ std::vector<ContactPair> modelledPairs(const std::vector<PairDecision>& decision
   return pairs;
 }
 
+/// A deterministic first guess of the pairs in reach: the push plan, or for a robot the inverse
+/// kinematics of its pushing sphere's push plan.
+struct FirstGuess {
+  TrajectoryGuess guess;  ///< multipliers per pair in reach
+  std::vector<PushPlan::ShortPush> short_pushes;
+  int pusher_sphere = -1;
+};
+
+FirstGuess firstGuess(const SceneTask& task, const std::vector<ContactPair>& candidates,
+                      const SceneSolveOptions& options) {
+  if (task.scene.hasRobot()) {
+    RobotGuess robot = planRobotGuess(task, candidates, options.ocp.discretization.num_elements);
+    return {std::move(robot.guess), {}, robot.pusher_sphere};
+  }
+  PushPlan plan = planPushes(task, candidates);
+  return {std::move(plan.guess), std::move(plan.short_pushes), -1};
+}
+
 /// The first round's pairs, among the pairs in reach (the decisions' modelled ones): all of them
-/// without lazy pairs; for a warm start the previous solution's pairs when all of them are in
-/// reach (so that its NLP can be the same); else those the first guess calls for. The others
-/// in reach are to be checked.
+/// without lazy pairs or with few in reach; for a warm start the previous solution's pairs when
+/// all of them are in reach (so that its NLP can be the same); else those the first guess calls
+/// for. The others in reach are to be checked.
 void chooseFirstPairs(const SceneTask& task, const std::vector<ContactPair>& candidates,
                       const TrajectoryGuess& guess, const SceneSolveOptions& options,
                       SceneOutcome& outcome) {
-  if (!options.lazy_pairs) return;
+  if (!options.lazy_pairs || static_cast<int>(candidates.size()) <= options.all_pairs_up_to) {
+    return;
+  }
   std::vector<bool> chosen;
   std::vector<std::string> reasons(candidates.size(),
                                    "modelled in the previous solution (warm start)");
@@ -71,8 +96,8 @@ void chooseFirstPairs(const SceneTask& task, const std::vector<ContactPair>& can
   }
   if (chosen.size() != candidates.size()) {
     const int samples = 16 * task.num_intervals;
-    const PairSelection selection =
-        pairsTheGuessNeeds(task, candidates, guess, options.pair_margin, samples);
+    const PairSelection selection = pairsTheGuessNeeds(task.scene, task.horizon, candidates, guess,
+                                                       options.pair_margin, samples);
     chosen = selection.modelled;
     reasons = selection.reasons;
   }
@@ -104,21 +129,35 @@ std::string nlpTooLarge(const NlpAssembly& nlp, size_t modelled_pairs, const Sce
 
 /// The task with each target the push plan found out of the pushers' reach replaced by the
 /// nearest end it pushes to.
-SceneTask reachableTask(const SceneTask& task, const PushPlan& plan) {
+SceneTask reachableTask(const SceneTask& task, const FirstGuess& guess) {
   SceneTask reachable = task;
-  for (const PushPlan::ShortPush& push : plan.short_pushes) {
+  for (const PushPlan::ShortPush& push : guess.short_pushes) {
     // Out of time only: the real target's optimum pushes as far as time allows, as planned.
     if (!push.time_limited) reachable.bodies[push.body].target = push.end;
   }
   return reachable;
 }
 
-void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const PushPlan& plan) {
-  const DiscScene& scene = task.scene;
+/// Each body's and joint's distance from its target at the end; a successful outcome that misses
+/// one by more than targetTolerance is kTargetNotReached, its message naming every target missed
+/// (and why, for the pushes the first guess found short).
+void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const FirstGuess& guess) {
+  const Scene& scene = task.scene;
   const Eigen::VectorXd end = outcome.trajectory.finalState();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
   std::ostringstream missed;
   missed.precision(3);
-  outcome.target_distances.assign(scene.bodies().size(), std::numeric_limits<double>::quiet_NaN());
+  outcome.joint_target_distances.assign(scene.numJoints(), nan);
+  for (int j = 0; j < scene.numJoints(); ++j) {
+    const JointTask& t = task.joints[j];
+    if (!(t.target_weight > 0.0)) continue;
+    outcome.joint_target_distances[j] = std::fabs(end(j) - t.target);
+    if (outcome.joint_target_distances[j] > targetTolerance(t.target_weight)) {
+      missed << (missed.tellp() > 0 ? "; " : "") << "joint '" << scene.robot().joints[j].name
+             << "' ends " << outcome.joint_target_distances[j] << " from its target";
+    }
+  }
+  outcome.target_distances.assign(scene.bodies().size(), nan);
   for (size_t b = 0; b < scene.bodies().size(); ++b) {
     const BodyTask& t = task.bodies[b];
     if (t.target.size() == 0 || !(t.target_weight > 0.0)) continue;
@@ -128,7 +167,7 @@ void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const PushPlan& 
     missed << (missed.tellp() > 0 ? "; " : "") << "body '" << scene.bodies()[b].name << "' ends "
            << distance << " from its target (" << t.target.transpose() << "), tolerance "
            << targetTolerance(t.target_weight);
-    for (const PushPlan::ShortPush& push : plan.short_pushes) {
+    for (const PushPlan::ShortPush& push : guess.short_pushes) {
       if (push.body != static_cast<int>(b)) continue;
       missed << (push.time_limited
                      ? " (out of the pushers' reach within the horizon at their speed bounds; "
@@ -149,20 +188,24 @@ void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const PushPlan& 
 /// margin become modelled for the next round (named in `rounds_note`): true when there is one.
 bool measureGaps(const SceneTask& task, const SceneSolveOptions& options, int round,
                  SceneOutcome& outcome, std::string& rounds_note) {
-  const std::vector<Eigen::VectorXd> path = densePath(outcome.trajectory);
-  const std::vector<Eigen::VectorXd> stage_points = densePath(outcome.trajectory, 0);
+  std::vector<ContactPair> modelled, checked;
+  for (const PairDecision& decision : outcome.decisions) {
+    if (decision.modelled) modelled.push_back(decision.pair);
+    if (decision.checked) checked.push_back(decision.pair);
+  }
+  const std::vector<double> modelled_gaps =
+      smallestGapsAt(task.scene, modelled, densePath(outcome.trajectory, 0));
+  const std::vector<double> checked_gaps =
+      smallestGaps(task.scene, checked, densePath(outcome.trajectory));
   std::vector<std::string> added;
+  size_t m = 0, c = 0;
   for (PairDecision& decision : outcome.decisions) {
     if (decision.modelled) {
-      decision.min_distance = 0.0;
-      for (size_t i = 0; i < stage_points.size(); ++i) {
-        const double gap = pairGap(task.scene, decision.pair, stage_points[i]);
-        decision.min_distance = i == 0 ? gap : std::min(decision.min_distance, gap);
-      }
+      decision.min_distance = modelled_gaps[m++];
       continue;
     }
     if (!decision.checked) continue;
-    decision.min_distance = smallestGap(task.scene, decision.pair, path);
+    decision.min_distance = checked_gaps[c++];
     std::ostringstream reason;
     reason.precision(3);
     if (outcome.status == SolveStatus::kSuccess &&
@@ -174,7 +217,7 @@ bool measureGaps(const SceneTask& task, const SceneSolveOptions& options, int ro
       added.push_back(task.scene.pairName(decision.pair));
     } else {
       reason << "checked on the solution: never closer than " << decision.min_distance
-             << " (margin " << options.pair_margin * pairSize(task.scene, decision.pair) << ")";
+             << " (margin " << options.pair_margin * task.scene.pairSize(decision.pair) << ")";
     }
     decision.reason = reason.str();
   }
@@ -212,11 +255,12 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     for (PairDecision& decision : outcome.decisions) decision.modelled = true;
   }
   const std::vector<ContactPair> candidates = modelledPairs(outcome.decisions);
-  const PushPlan plan = planPushes(task, candidates);
+  const FirstGuess first_guess = firstGuess(task, candidates, options);
+  outcome.pusher_sphere = first_guess.pusher_sphere;
   // A soft target out of the pushers' reach: the OCP aims at the nearest end the plan can push
   // to (a reachable task, solved as fast as one), and the answer is judged by the real target.
-  const SceneTask aimed = reachableTask(task, plan);
-  chooseFirstPairs(aimed, candidates, plan.guess, options, outcome);
+  const SceneTask aimed = reachableTask(task, first_guess);
+  chooseFirstPairs(aimed, candidates, first_guess.guess, options, outcome);
   Trajectory previous_round;
   std::vector<ContactPair> previous_pairs;
   std::string rounds_note;
@@ -226,7 +270,7 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     OcpOptions ocp_options = options.ocp;
     ocp_options.homotopy.wall_time_budget =
         std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
-    if (round > 1) {
+    if (round > 1 && options.resume_relaxation) {
       // The previous round's solution is nearly this round's (the new pairs start separated):
       // its homotopy resumes at the tightest relaxation that round reached, not from guess_sigma.
       ocp_options.guess_sigma = tightestRelaxation(outcome.report, ocp_options.guess_sigma);
@@ -248,7 +292,7 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
       break;
     }
     outcome.structure = planStructure(aimed, outcome, options.ocp.discretization);
-    const TrajectoryGuess guess = partGuess(aimed, part, plan.guess, candidates);
+    const TrajectoryGuess guess = partGuess(aimed, part, first_guess.guess, candidates);
     OcpSolution solution;
     if (round == 1) {
       if (options.previous != nullptr) {
@@ -274,20 +318,33 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     outcome.trajectory = fullSceneTrajectory(aimed, part, solution.trajectory);
     outcome.report = solution.report;
     outcome.pair_rounds = round;
+    outcome.modelled = part.modelled_in_task;
     previous_round = outcome.trajectory;
     previous_pairs = part.modelled_in_task;
     if (!measureGaps(aimed, options, round, outcome, rounds_note)) break;
   }
   outcome.message += rounds_note;
-  judgeTargets(task, outcome, plan);
+  if (!outcome.trajectory.states.empty()) {
+    outcome.boundary_gap = smallestBoundaryGap(task.scene, outcome.modelled, outcome.trajectory);
+  }
+  judgeTargets(task, outcome, first_guess);
   if (options.verify && outcome.status != SolveStatus::kCancelled) {
     const SimulationOptions fine =
         verificationOptions(options.verification, options.ocp,
                             options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
+    const Verification verification = verifyOutcome(task, outcome, fine, options.pair_margin);
     outcome.verified = true;
-    outcome.verification_error = verifyOutcome(task, outcome, fine, options.pair_margin).error;
+    outcome.verification_error = verification.error;
+    outcome.verification_gap = verification.gap;
   }
   return outcome;
+}
+
+double smallestBoundaryGap(const Scene& scene, const std::vector<ContactPair>& pairs,
+                           const Trajectory& trajectory) {
+  double gap = std::numeric_limits<double>::infinity();
+  for (double at : smallestGapsAt(scene, pairs, trajectory.states)) gap = std::min(gap, at);
+  return gap;
 }
 
 SimulationOptions verificationOptions(const DiscretizationOptions& configured,
@@ -328,10 +385,16 @@ Verification verifyOutcome(const SceneTask& task, const SceneOutcome& outcome,
       break;
     }
     grew = false;
-    const std::vector<Eigen::VectorXd> path = densePath(verification.trajectory);
+    std::vector<ContactPair> checked;
+    for (const PairDecision& decision : decisions) {
+      if (decision.checked) checked.push_back(decision.pair);
+    }
+    const std::vector<double> gaps =
+        smallestGaps(task.scene, checked, densePath(verification.trajectory));
+    size_t k = 0;
     for (PairDecision& decision : decisions) {
-      if (decision.checked && withinMargin(task.scene, decision.pair,
-                                           smallestGap(task.scene, decision.pair, path), margin)) {
+      if (!decision.checked) continue;
+      if (withinMargin(task.scene, decision.pair, gaps[k++], margin)) {
         decision.modelled = true;
         decision.checked = false;
         grew = true;
@@ -340,6 +403,11 @@ Verification verifyOutcome(const SceneTask& task, const SceneOutcome& outcome,
   }
   verification.error =
       (verification.trajectory.finalState() - outcome.trajectory.finalState()).norm();
+  std::vector<ContactPair> in_reach;
+  for (const PairDecision& decision : outcome.decisions) {
+    if (decision.modelled || decision.checked) in_reach.push_back(decision.pair);
+  }
+  verification.gap = smallestBoundaryGap(task.scene, in_reach, verification.trajectory);
   return verification;
 }
 
@@ -369,12 +437,19 @@ SceneOutcome simulateSceneTask(SceneTask task, const std::vector<Eigen::VectorXd
       body.max_speed = std::max(body.max_speed, u.segment(first, dim).cwiseAbs().maxCoeff());
     }
   }
+  for (int j = 0; j < task.scene.numJoints() && j < static_cast<int>(task.joints.size()); ++j) {
+    double speed = 0.0;
+    for (const Eigen::VectorXd& u : controls) speed = std::max(speed, std::fabs(u(j)));
+    task.joints[j].passive = speed == 0.0;
+    task.joints[j].max_velocity = speed;
+  }
   if (!prepare(task, limits, false, outcome)) return outcome;
   const MovingPart part = movingPartOf(task, outcome);
-  const DiscScene& moving = part.task.scene;
+  const Scene& moving = part.task.scene;
   FesdIntegrator integrator(moving.model(part.modelled), options);
   const SimulationResult result =
       integrator.simulate(moving.initialState(), task.horizon, steps, controls);
+  outcome.modelled = part.modelled_in_task;
   outcome.status = result.status;
   outcome.message = result.message;
   outcome.trajectory = fullSceneTrajectory(task, part, result.trajectory);

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "fesd_trajopt/function/quadratic_function.h"
+#include "fesd_trajopt/kinematics/reach.h"
 #include "fesd_trajopt/nlp/nlp_assembly.h"
 
 namespace fesd {
@@ -40,17 +42,20 @@ std::string boundsProblem(const Eigen::VectorXd& lower, const Eigen::VectorXd& u
   return "";
 }
 
-/// Per coordinate: where a body can be during the task (start +- reach, within its workspace).
+/// Per coordinate: where a free collision body's centre can be during the task (start +- reach,
+/// within its workspace).
 struct Box {
   Eigen::VectorXd low, high;
 };
 
-Box reachableBox(const SceneTask& task, int body, double reach) {
-  const SceneBody& b = task.scene.bodies()[body];
-  const BodyTask& t = task.bodies[body];
-  Box box{b.position.array() - reach, b.position.array() + reach};
-  if (t.workspace_lower.size()) box.low = box.low.cwiseMax(t.workspace_lower);
-  if (t.workspace_upper.size()) box.high = box.high.cwiseMin(t.workspace_upper);
+Box reachableBox(const SceneTask& task, const CollisionBody& body, double reach) {
+  const int dim = task.scene.dimension();
+  const Eigen::VectorXd offset = body.centre.offset.head(dim);
+  const Eigen::VectorXd centre = task.scene.bodies()[body.free_body].position + offset;
+  const BodyTask& t = task.bodies[body.free_body];
+  Box box{centre.array() - reach, centre.array() + reach};
+  if (t.workspace_lower.size()) box.low = box.low.cwiseMax(t.workspace_lower + offset);
+  if (t.workspace_upper.size()) box.high = box.high.cwiseMin(t.workspace_upper + offset);
   return box;
 }
 
@@ -68,70 +73,50 @@ std::string formatNumber(double value) {
   return out.str();
 }
 
-bool isAllowed(const SceneTask& task, const ContactPair& pair) {
-  return task.allowed_pairs.empty() ||
-         std::find(task.allowed_pairs.begin(), task.allowed_pairs.end(), pair) !=
-             task.allowed_pairs.end();
-}
-
-/// A lower bound on the gap between a pair's surfaces during the task, each body within its
-/// reach of its start (and within its workspace).
-double separationBound(const SceneTask& task, const ContactPair& pair,
-                       const std::vector<double>& reach) {
-  const DiscScene& scene = task.scene;
-  const Box body = reachableBox(task, pair.body, reach[pair.body]);
-  const double radius = scene.bodies()[pair.body].radius;
+/// A lower bound on the gap between a pair's surfaces during the task, each side within its
+/// reach of its start: boxes for free bodies (within their workspaces), balls for robot spheres.
+double separationBound(const SceneTask& task, const std::vector<CollisionBody>& bodies,
+                       const ContactPair& pair, const std::vector<double>& reach) {
+  const Scene& scene = task.scene;
+  const CollisionBody& a = bodies[pair.body];
+  const bool two_free =
+      a.sphere < 0 && (pair.kind != ContactPair::Kind::kBody || bodies[pair.other].sphere < 0);
+  if (!two_free) {
+    const double other = pair.kind == ContactPair::Kind::kBody ? reach[pair.other] : 0.0;
+    return scene.pairGap(pair, scene.initialState()) - reach[pair.body] - other;
+  }
+  const Box box = reachableBox(task, a, reach[pair.body]);
   switch (pair.kind) {
-    case ContactPair::Kind::kBody:
-      return boxDistance(body, reachableBox(task, pair.other, reach[pair.other])) - radius -
-             scene.bodies()[pair.other].radius;
+    case ContactPair::Kind::kBody: {
+      const CollisionBody& b = bodies[pair.other];
+      return boxDistance(box, reachableBox(task, b, reach[pair.other])) - a.radius - b.radius;
+    }
     case ContactPair::Kind::kObstacle: {
       const SceneObstacle& o = scene.obstacles()[pair.other];
-      return boxDistance(body, Box{o.position, o.position}) - radius - o.radius;
+      return boxDistance(box, Box{o.position, o.position}) - a.radius - o.radius;
     }
     case ContactPair::Kind::kWall: {
       const SceneWall& w = scene.walls()[pair.other];
-      return (w.normal.array() * body.low.array()).min(w.normal.array() * body.high.array()).sum() -
-             w.offset - radius;
+      return (w.normal.array() * box.low.array()).min(w.normal.array() * box.high.array()).sum() -
+             w.offset - a.radius;
     }
   }
   return 0.0;
 }
 
-/// How far each body can get from its start. The projected velocity is never longer than the
-/// controls' (the projection does not expand), so no body outruns T |u|_max. A passive body
-/// moves only when pushed: it gets that reach once it can touch a body that moves (through an
-/// allowed pair), and keeps 0 otherwise.
-std::vector<double> bodyReach(const SceneTask& task) {
-  const DiscScene& scene = task.scene;
-  double speed_squared = 0.0;
+/// |u_max| over every control coordinate at its bound.
+double controlNorm(const SceneTask& task) {
+  const Scene& scene = task.scene;
+  double squared = 0.0;
+  for (int j = 0; j < scene.numJoints(); ++j) {
+    squared += jointSpeedLimit(task, j) * jointSpeedLimit(task, j);
+  }
   for (size_t b = 0; b < scene.bodies().size(); ++b) {
     if (scene.bodies()[b].actuated) {
-      speed_squared += scene.dimension() * task.bodies[b].max_speed * task.bodies[b].max_speed;
+      squared += scene.dimension() * task.bodies[b].max_speed * task.bodies[b].max_speed;
     }
   }
-  const double reach = task.horizon * std::sqrt(speed_squared);
-  std::vector<double> reaches(scene.bodies().size(), 0.0);
-  for (size_t b = 0; b < scene.bodies().size(); ++b) {
-    if (scene.bodies()[b].actuated) reaches[b] = reach;
-  }
-  for (bool grew = true; grew;) {
-    grew = false;
-    for (const ContactPair& pair : scene.allPairs()) {
-      if (pair.kind != ContactPair::Kind::kBody || !isAllowed(task, pair)) continue;
-      const bool first_moves = reaches[pair.body] > 0.0, second_moves = reaches[pair.other] > 0.0;
-      if (first_moves == second_moves || separationBound(task, pair, reaches) > 0.0) continue;
-      reaches[first_moves ? pair.other : pair.body] = reach;
-      grew = true;
-    }
-  }
-  return reaches;
-}
-
-}  // namespace
-
-double targetTolerance(double target_weight) {
-  return 1e-3 * std::max(1.0, 100.0 / target_weight);
+  return std::sqrt(squared);
 }
 
 std::string gridProblem(double horizon, int num_intervals, double control_weight,
@@ -150,7 +135,7 @@ std::string gridProblem(double horizon, int num_intervals, double control_weight
   return "";
 }
 
-std::string bodiesProblem(const DiscScene& scene, const std::vector<BodyTask>& bodies,
+std::string bodiesProblem(const Scene& scene, const std::vector<BodyTask>& bodies,
                           const TaskLimits& limits) {
   const int dim = scene.dimension();
   std::set<std::string> names;
@@ -179,7 +164,7 @@ std::string bodiesProblem(const DiscScene& scene, const std::vector<BodyTask>& b
   return "";
 }
 
-std::string fixedGeometryProblem(const DiscScene& scene, const TaskLimits& limits) {
+std::string fixedGeometryProblem(const Scene& scene, const TaskLimits& limits) {
   const int dim = scene.dimension();
   for (const SceneObstacle& o : scene.obstacles()) {
     if (!(o.radius > 0.0) || !std::isfinite(o.radius)) {
@@ -199,11 +184,81 @@ std::string fixedGeometryProblem(const DiscScene& scene, const TaskLimits& limit
   return "";
 }
 
+/// Each joint's initial position, speed bound, target and bounds, and the default speed.
+std::string jointsProblem(const SceneTask& task) {
+  const Scene& scene = task.scene;
+  if (scene.hasRobot() &&
+      (!(task.default_joint_velocity > 0.0) || !std::isfinite(task.default_joint_velocity))) {
+    return "the default joint velocity must be finite and > 0";
+  }
+  for (int j = 0; j < scene.numJoints(); ++j) {
+    const JointTask& t = task.joints[j];
+    const std::string who = "joint '" + scene.robot().joints[j].name + "'";
+    const double q0 = scene.initialJoints()(j);
+    if (!std::isfinite(q0)) return who + ": the initial position is not finite";
+    if (!(t.max_velocity >= 0.0) || !std::isfinite(t.max_velocity)) {
+      return who + ": the velocity bound must be finite and >= 0";
+    }
+    if (!std::isfinite(t.target) || !(t.target_weight >= 0.0) || !std::isfinite(t.target_weight)) {
+      return who + ": the target and its weight must be finite (weight >= 0)";
+    }
+    if (t.has_bounds && (std::isnan(t.lower) || std::isnan(t.upper) || t.lower > t.upper)) {
+      return who + ": the bounds are NaN or contradictory (lower > upper)";
+    }
+    const auto [lower, upper] = jointBounds(task, j);
+    if (q0 < lower || q0 > upper) {
+      return who + " starts at " + formatNumber(q0) + ", outside its bounds [" +
+             formatNumber(lower) + ", " + formatNumber(upper) + "]";
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+SceneTask taskOn(Scene scene) {
+  SceneTask task;
+  task.bodies.resize(scene.bodies().size());
+  task.joints.resize(scene.numJoints());
+  task.scene = std::move(scene);
+  return task;
+}
+
+bool isAllowed(const SceneTask& task, const ContactPair& pair) {
+  return task.allowed_pairs.empty() ||
+         std::find(task.allowed_pairs.begin(), task.allowed_pairs.end(), pair) !=
+             task.allowed_pairs.end();
+}
+
+double jointSpeedLimit(const SceneTask& task, int joint) {
+  if (task.joints[joint].passive) return 0.0;
+  if (task.joints[joint].max_velocity > 0.0) return task.joints[joint].max_velocity;
+  const double urdf = task.scene.robot().joints[joint].max_velocity;
+  return urdf > 0.0 ? urdf : task.default_joint_velocity;
+}
+
+std::pair<double, double> jointBounds(const SceneTask& task, int joint) {
+  const JointTask& t = task.joints[joint];
+  if (t.has_bounds) return {t.lower, t.upper};
+  const KinematicJoint& j = task.scene.robot().joints[joint];
+  return {j.lower, j.upper};
+}
+
+double targetTolerance(double target_weight) {
+  return 1e-3 * std::max(1.0, 100.0 / target_weight);
+}
+
 std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
-  const DiscScene& scene = task.scene;
+  const Scene& scene = task.scene;
   const int dim = scene.dimension();
   if (dim != 2 && dim != 3) return "the scene must be planar (2) or spatial (3)";
-  if (scene.bodies().empty()) return "the scene has no bodies (no movable URDF link, none added)";
+  if (!scene.hasRobot() && scene.bodies().empty()) {
+    return "the scene has no bodies (no movable URDF link, none added)";
+  }
+  if (scene.hasRobot() && static_cast<int>(scene.robot().spheres.size()) > limits.max_spheres) {
+    return "too many collision spheres: " + std::to_string(scene.robot().spheres.size()) + " > " +
+           std::to_string(limits.max_spheres);
+  }
   if (static_cast<int>(scene.bodies().size()) > limits.max_bodies) {
     return "too many bodies: " + std::to_string(scene.bodies().size()) + " > " +
            std::to_string(limits.max_bodies);
@@ -214,14 +269,30 @@ std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
   if (static_cast<int>(scene.walls().size()) > limits.max_walls) {
     return "too many walls (limit " + std::to_string(limits.max_walls) + ")";
   }
+  for (const FreeLink& free :
+       scene.hasRobot() ? scene.robot().free_links : std::vector<FreeLink>{}) {
+    if (std::none_of(scene.bodies().begin(), scene.bodies().end(),
+                     [&](const SceneBody& body) { return body.name == free.link; })) {
+      return "link '" + free.link +
+             "' is on a planar or floating joint but no free body of the scene stands for it "
+             "(robotForScene makes one)";
+    }
+  }
+  if (static_cast<int>(task.joints.size()) != scene.numJoints()) {
+    return "one joint task per robot coordinate is needed";
+  }
   if (task.bodies.size() != scene.bodies().size()) return "one body task per body is needed";
   std::string problem = gridProblem(task.horizon, task.num_intervals, task.control_weight, limits);
+  if (problem.empty()) problem = jointsProblem(task);
   if (problem.empty()) problem = bodiesProblem(scene, task.bodies, limits);
   if (!problem.empty()) return problem;
   for (size_t b = 0; b < scene.bodies().size(); ++b) {
     const SceneBody& body = scene.bodies()[b];
     const BodyTask& t = task.bodies[b];
     const std::string who = "body '" + body.name + "'";
+    if (scene.hasRobot() && (t.workspace_lower.size() || t.workspace_upper.size())) {
+      return who + ": workspace bounds are not supported in robot scenes";
+    }
     problem = boundsProblem(t.workspace_lower, t.workspace_upper, dim);
     if (!problem.empty()) return who + ": the workspace bounds " + problem;
     if ((t.workspace_lower.size() && (body.position.array() < t.workspace_lower.array()).any()) ||
@@ -247,8 +318,38 @@ std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
   return "";
 }
 
+std::vector<double> collisionReach(const SceneTask& task) {
+  const Scene& scene = task.scene;
+  const double travel = task.horizon * controlNorm(task);
+  const std::vector<CollisionBody> bodies = scene.collisionBodies();
+  std::vector<double> reach(bodies.size(), 0.0);
+  const Eigen::VectorXd joint_speeds =
+      Eigen::VectorXd::Constant(scene.numJoints(), controlNorm(task));
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].sphere >= 0) {
+      reach[i] = sphereReachBound(scene.robot(), bodies[i].sphere, joint_speeds, task.horizon);
+    } else if (scene.bodies()[bodies[i].free_body].actuated) {
+      reach[i] = travel;
+    }
+  }
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const ContactPair& pair : scene.allPairs()) {
+      if (pair.kind != ContactPair::Kind::kBody || !isAllowed(task, pair)) continue;
+      const bool first_moves = reach[pair.body] > 0.0, second_moves = reach[pair.other] > 0.0;
+      if (first_moves == second_moves || separationBound(task, bodies, pair, reach) > 0.0) continue;
+      const CollisionBody& still = bodies[first_moves ? pair.other : pair.body];
+      if (still.sphere >= 0) continue;  // a robot sphere's reach is its chain's
+      for (int sphere : scene.freeBodyCollisionBodies(still.free_body)) reach[sphere] = travel;
+      grew = true;
+    }
+  }
+  return reach;
+}
+
 std::string infeasibility(const SceneTask& task) {
-  const std::vector<double> reach = bodyReach(task);
+  const std::vector<double> reach = collisionReach(task);
+  const std::vector<CollisionBody> bodies = task.scene.collisionBodies();
   for (size_t b = 0; b < task.bodies.size(); ++b) {
     const BodyTask& t = task.bodies[b];
     if (t.target.size() == 0 || t.target_weight == 0.0) continue;
@@ -257,19 +358,24 @@ std::string infeasibility(const SceneTask& task) {
         (t.workspace_upper.size() && (t.target.array() > t.workspace_upper.array()).any())) {
       return who + " has its target outside its workspace bounds";
     }
-    const Box box = reachableBox(task, static_cast<int>(b), reach[b]);
+    // The body's position moves as its first collision body's centre does.
+    const int first = task.scene.freeBodyCollisionBodies(static_cast<int>(b))[0];
+    CollisionBody position = bodies[first];
+    position.centre.offset.setZero();
+    const Box box = reachableBox(task, position, reach[first]);
     const double miss = boxDistance(box, Box{t.target, t.target});
     if (miss > 0.0) {
       return who + " cannot reach its target within the horizon: it stays at least " +
              formatNumber(miss) + " away" +
-             (reach[b] > 0.0 ? "" : " (nothing that moves can push it)");
+             (reach[first] > 0.0 ? "" : " (nothing that moves can push it)");
     }
   }
   return "";
 }
 
 std::vector<PairDecision> decidePairs(const SceneTask& task) {
-  const std::vector<double> reach = bodyReach(task);
+  const std::vector<double> reach = collisionReach(task);
+  const std::vector<CollisionBody> bodies = task.scene.collisionBodies();
   std::vector<PairDecision> decisions;
   for (const ContactPair& pair : task.scene.allPairs()) {
     if (!isAllowed(task, pair)) {
@@ -282,7 +388,7 @@ std::vector<PairDecision> decidePairs(const SceneTask& task) {
       decisions.push_back({pair, false, "neither side can move: nothing can push them"});
       continue;
     }
-    const double separation = separationBound(task, pair, reach);
+    const double separation = separationBound(task, bodies, pair, reach);
     if (separation > 0.0) {
       decisions.push_back({pair, false,
                            "cannot touch within the horizon: reachable sets stay " +
@@ -295,7 +401,7 @@ std::vector<PairDecision> decidePairs(const SceneTask& task) {
 }
 
 OcpDefinition buildOcp(const SceneTask& task, const std::vector<ContactPair>& modelled) {
-  const DiscScene& scene = task.scene;
+  const Scene& scene = task.scene;
   const int dim = scene.dimension(), nx = scene.stateSize(), nu = scene.controlSize();
   OcpDefinition ocp;
   ocp.model = scene.model(modelled);
@@ -307,6 +413,15 @@ OcpDefinition buildOcp(const SceneTask& task, const std::vector<ContactPair>& mo
   ocp.state_lower = Eigen::VectorXd::Constant(nx, -kInf);
   ocp.state_upper = Eigen::VectorXd::Constant(nx, kInf);
   Eigen::VectorXd terminal_weights = Eigen::VectorXd::Zero(nx), targets = ocp.initial_state;
+  for (int j = 0; j < scene.numJoints(); ++j) {
+    ocp.control_lower(j) = -jointSpeedLimit(task, j);
+    ocp.control_upper(j) = jointSpeedLimit(task, j);
+    std::tie(ocp.state_lower(j), ocp.state_upper(j)) = jointBounds(task, j);
+    if (task.joints[j].target_weight > 0.0) {
+      terminal_weights(j) = task.joints[j].target_weight;
+      targets(j) = task.joints[j].target;
+    }
+  }
   for (int b = 0; b < static_cast<int>(scene.bodies().size()); ++b) {
     const BodyTask& t = task.bodies[b];
     const int first = scene.stateIndex(b);

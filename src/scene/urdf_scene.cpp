@@ -11,7 +11,7 @@ namespace fesd {
 
 UrdfScene sceneFromUrdf(const std::string& xml, bool planar, const UrdfLimits& limits) {
   UrdfScene result;
-  result.scene = DiscScene(planar ? 2 : 3);
+  result.scene = Scene(planar ? 2 : 3);
   if (xml.size() > limits.max_bytes) {
     result.error = "URDF too large: " + std::to_string(xml.size()) + " bytes > " +
                    std::to_string(limits.max_bytes);

@@ -9,10 +9,10 @@
 #include "fesd_trajopt/examples/circle_example.h"
 #include "fesd_trajopt/examples/filippov_examples.h"
 #include "fesd_trajopt/examples/manipulation_example.h"
+#include "fesd_trajopt/examples/push_scenes.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
 #include "fesd_trajopt/scene/moving_part.h"
-#include "fesd_trajopt/scene/push_scenes.h"
 #include "fesd_trajopt/scene/scene_solver.h"
 
 namespace {

@@ -90,7 +90,7 @@ TEST(BodiesInTheWay, APairTheFirstRoundMissedIsAddedAndSolvedAgain) {
   EXPECT_NE(run.outcome.message.find("round 2 added"), std::string::npos) << run.outcome.message;
   for (const fesd::PairDecision& d : run.outcome.decisions) {
     if (d.checked) {
-      EXPECT_GT(d.min_distance, 0.1 * fesd::pairSize(scene.task.scene, d.pair));
+      EXPECT_GT(d.min_distance, 0.1 * scene.task.scene.pairSize(d.pair));
     }
   }
 }

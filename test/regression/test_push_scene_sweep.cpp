@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/scene/push_scenes.h"
+#include "fesd_trajopt/examples/push_scenes.h"
 #include "support/hard_cases.h"
 
 namespace {

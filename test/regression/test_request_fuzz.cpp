@@ -12,7 +12,6 @@
 #include "fesd_trajopt/discretization/pds_discretization.h"
 #include "fesd_trajopt/scene/moving_part.h"
 #include "fesd_trajopt/scene/robot_from_urdf.h"
-#include "fesd_trajopt/scene/robot_task.h"
 #include "fesd_trajopt/scene/scene_task.h"
 #include "fesd_trajopt/scene/urdf_scene.h"
 
@@ -51,7 +50,7 @@ class Fuzzer {
   fesd::SceneTask garbageTask() {
     const int dim = chance(0.9) ? integer(2, 3) : integer(0, 4);
     fesd::SceneTask task;
-    task.scene = fesd::DiscScene(dim);
+    task.scene = fesd::Scene(dim);
     const int bodies = chance(0.95) ? integer(0, 5) : 31;
     for (int b = 0; b < bodies; ++b) {
       task.scene.bodies().push_back({"b" + std::to_string(integer(0, bodies)), number(0.1, 1.0),
@@ -88,7 +87,7 @@ class Fuzzer {
   fesd::SceneTask validTask() {
     const int dim = integer(2, 3);
     fesd::SceneTask task;
-    task.scene = fesd::DiscScene(dim);
+    task.scene = fesd::Scene(dim);
     const int bodies = integer(1, 6);
     for (int b = 0; b < bodies; ++b) {
       Eigen::VectorXd p = Eigen::VectorXd::Zero(dim);
@@ -325,8 +324,8 @@ TEST(RequestFuzz, MutatedRobotUrdfNeverCrashesTheRobotReader) {
       <origin xyz="0.2 0.3 0"/></joint></robot>)";
   const fesd::RobotForScene intact = fesd::robotForScene(urdf, fesd::PlanarChoice::kInferred);
   ASSERT_EQ(intact.error, "");
-  ASSERT_EQ(intact.free_body_spheres.size(), 1u);
-  ASSERT_EQ(intact.free_body_spheres[0].size(), 2u);
+  ASSERT_EQ(intact.free_bodies.size(), 1u);
+  ASSERT_EQ(intact.free_bodies[0].spheres.size(), 2u);
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
   Fuzzer fuzzer(7);
   int readable = 0;
@@ -339,13 +338,12 @@ TEST(RequestFuzz, MutatedRobotUrdfNeverCrashesTheRobotReader) {
     if (!read.error.empty()) continue;
     ++readable;
     // What the reader accepts, the task judges: a message, or pairs with finite start gaps.
-    fesd::DiscScene discs(read.dimension);
+    fesd::Scene discs(read.dimension);
     discs.bodies() = read.free_bodies;
-    const fesd::RobotTask task(fesd::RobotScene(read.robot,
-                                                Eigen::VectorXd::Zero(read.robot->numCoordinates()),
-                                                discs, read.free_body_spheres));
-    if (!fesd::validateRobotTask(task, fesd::TaskLimits{}).empty()) continue;
-    for (const fesd::RobotPairDecision& decision : fesd::decideRobotPairs(task)) {
+    const fesd::SceneTask task = fesd::taskOn(
+        fesd::robotInScene(read.robot, Eigen::VectorXd::Zero(read.robot->numCoordinates()), discs));
+    if (!fesd::validateTask(task, fesd::TaskLimits{}).empty()) continue;
+    for (const fesd::PairDecision& decision : fesd::decidePairs(task)) {
       ASSERT_TRUE(std::isfinite(task.scene.pairGap(decision.pair, task.scene.initialState())))
           << task.scene.pairName(decision.pair) << "\n"
           << mutated;

@@ -1,4 +1,4 @@
-// The shipped planar-arm push (scene/robot_scenes.h) planned end to end: the arm's spheres push
+// The shipped planar-arm push (examples/robot_scenes.h) planned end to end: the arm's spheres push
 // the disc to its target to 1e-3, no modelled pair penetrates at any element boundary of the
 // plan nor of its fine re-simulation, which ends where the plan does.
 #include <cstdio>
@@ -7,10 +7,11 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/scene/robot_scenes.h"
-#include "fesd_trajopt/scene/robot_solver.h"
+#include "fesd_trajopt/examples/robot_scenes.h"
+#include "fesd_trajopt/scene/scene_solver.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 #include "support/robot_files.h"
+#include "support/scene_tasks.h"
 
 namespace {
 
@@ -18,12 +19,12 @@ class RobotPush : public ::testing::TestWithParam<bool> {};
 
 // Lazy pairs (true) and every pair in reach (false) both succeed.
 TEST_P(RobotPush, PlanarArmPushesTheDiscToItsTarget) {
-  const fesd::RobotTask task = fesd::planarArmPushTask(
+  const fesd::SceneTask task = fesd::planarArmPushTask(
       std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf")));
   const fesd::Stopwatch stopwatch;
-  fesd::RobotSolveOptions options;
+  fesd::SceneSolveOptions options = fesd_test::robotSolveOptions();
   options.lazy_pairs = GetParam();
-  const fesd::RobotOutcome outcome = fesd::solveRobotTask(task, {}, options);
+  const fesd::SceneOutcome outcome = fesd::solveSceneTask(task, {}, options);
   const double seconds = stopwatch.wallSeconds();
   ASSERT_EQ(outcome.invalid, "");
   ASSERT_EQ(outcome.status, fesd::SolveStatus::kSuccess) << outcome.message;
@@ -35,9 +36,8 @@ TEST_P(RobotPush, PlanarArmPushesTheDiscToItsTarget) {
   // interval at t = 1.8999 where the re-simulation has 1.8992: measured 6.0e-2 in the joints.
   EXPECT_LT(outcome.verification_error, GetParam() ? 0.1 : 1e-4);
   // The disc moved: some sphere pushed it.
-  EXPECT_GT(
-      (outcome.trajectory.finalState().tail(2) - task.scene.discs().bodies()[0].position).norm(),
-      0.15);
+  EXPECT_GT((outcome.trajectory.finalState().tail(2) - task.scene.bodies()[0].position).norm(),
+            0.15);
   std::printf(
       "planar arm push (lazy pairs %d): %.2f s, %d Ipopt iterations, objective %.6g, %zu modelled "
       "pairs in %d rounds, target %.2e, boundary gap %.2e, verification error %.2e gap %.2e, "
@@ -59,19 +59,19 @@ namespace {
 // puck or the table at any element boundary (every pair in reach, modelled or checked), and the
 // contact that pushes the puck is reported with its time.
 TEST(RobotPush, PandaPushesThePuckAcrossTheTable) {
-  const fesd::RobotTask task = fesd::pandaPushTask(std::make_shared<const fesd::KinematicModel>(
+  const fesd::SceneTask task = fesd::pandaPushTask(std::make_shared<const fesd::KinematicModel>(
       fesd_test::loadShippedRobot("panda_spherized.urdf")));
   const fesd::Stopwatch stopwatch;
-  fesd::RobotSolveOptions options;
+  fesd::SceneSolveOptions options = fesd_test::robotSolveOptions();
   options.lazy_pairs = true;
   options.verify = false;
-  const fesd::RobotOutcome outcome = fesd::solveRobotTask(task, {}, options);
+  const fesd::SceneOutcome outcome = fesd::solveSceneTask(task, {}, options);
   const double seconds = stopwatch.wallSeconds();
   ASSERT_EQ(outcome.invalid, "");
   ASSERT_EQ(outcome.status, fesd::SolveStatus::kSuccess) << outcome.message;
   EXPECT_LT(outcome.target_distances[0], 1e-3);
-  std::vector<fesd::RobotPair> in_reach;
-  for (const fesd::RobotPairDecision& decision : outcome.decisions) {
+  std::vector<fesd::ContactPair> in_reach;
+  for (const fesd::PairDecision& decision : outcome.decisions) {
     if (decision.modelled || decision.checked) in_reach.push_back(decision.pair);
   }
   EXPECT_EQ(in_reach.size(), 118u);  // spheres on the puck and the table; the puck on the table
@@ -79,8 +79,8 @@ TEST(RobotPush, PandaPushesThePuckAcrossTheTable) {
   EXPECT_GT(gap, -1e-8);
   int puck_contacts = 0;
   for (const fesd::SwitchEvent& event : outcome.trajectory.switches) {
-    const fesd::RobotPair& pair = outcome.modelled[event.constraint];
-    if (pair.kind == fesd::RobotPair::Kind::kBody &&
+    const fesd::ContactPair& pair = outcome.modelled[event.constraint];
+    if (pair.kind == fesd::ContactPair::Kind::kBody &&
         event.kind == fesd::SwitchEvent::Kind::kContact) {
       ++puck_contacts;
       EXPECT_GT(event.time, 0.0);

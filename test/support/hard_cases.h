@@ -10,7 +10,7 @@
 #include <Eigen/Dense>
 
 #include "fesd_trajopt/integrator/fesd_integrator.h"
-#include "fesd_trajopt/scene/disc_scene.h"
+#include "fesd_trajopt/scene/scene.h"
 
 /// Shared tools of the numerical hard-case tests (regression/test_hard_cases_*.cpp) and the
 /// push-scene sweep: small models, a simulation run twice to check determinism, and the checks
@@ -33,7 +33,7 @@ std::shared_ptr<const fesd::DcsModel> affineModel(const Eigen::MatrixXd& F,
 /// A point (a body of radius 0) moving with a constant velocity u, i.e. the projected motion
 /// of xdot = u among the scene's obstacles and walls; every obstacle and wall is a constraint.
 struct PointScene {
-  fesd::DiscScene scene{2};
+  fesd::Scene scene{2};
   std::shared_ptr<const fesd::DcsModel> model() const;
 };
 PointScene pointScene(const Eigen::Vector2d& start);

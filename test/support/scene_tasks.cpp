@@ -40,4 +40,12 @@ fesd::SceneTask pushAlongX() {
   return task;
 }
 
+fesd::SceneSolveOptions robotSolveOptions() {
+  fesd::SceneSolveOptions options;
+  options.lazy_pairs = false;
+  options.resume_relaxation = false;
+  options.verify = true;
+  return options;
+}
+
 }  // namespace fesd_test

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "fesd_trajopt/scene/scene_solver.h"
 #include "fesd_trajopt/scene/scene_task.h"
 
 /// Small pushing tasks shared by the scene tests.
@@ -19,5 +20,9 @@ fesd::SceneTask slowPushingTask();
 /// A pusher (R = 0.5, |u| <= 4) at (-2, 0) and a puck (R = 0.5) to be pushed from the origin to
 /// (3, 0) (weight 100) in T = 2 on 20 intervals.
 fesd::SceneTask pushAlongX();
+
+/// What the node asks of a robot solve: every pair in reach modelled, each lazy round started
+/// over, the plan verified.
+fesd::SceneSolveOptions robotSolveOptions();
 
 }  // namespace fesd_test

@@ -10,7 +10,7 @@
 #include "fesd_trajopt/examples/circle_example.h"
 #include "fesd_trajopt/integrator/active_set_step.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
-#include "fesd_trajopt/scene/disc_scene.h"
+#include "fesd_trajopt/scene/scene.h"
 
 namespace {
 
@@ -114,7 +114,7 @@ TEST(ActiveSetStep, StepsAreTiedWhereNoPairSwitchesInsideAControlInterval) {
 /// Two pushers (R = 1) at (-3, 0) and (3, 0) driven towards a passive disc (R = 1) at the origin
 /// at unit speed: both touch it at t = 1 exactly, by symmetry.
 struct SymmetricPush {
-  fesd::DiscScene scene{2};
+  fesd::Scene scene{2};
   Eigen::VectorXd control{Eigen::Vector4d(1.0, 0.0, -1.0, 0.0)};
   SymmetricPush() {
     scene.bodies().push_back({"left", 1.0, Eigen::Vector2d(-3.0, 0.0), true});

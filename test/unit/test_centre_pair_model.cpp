@@ -1,6 +1,7 @@
 // The DCS of centre pairs (scene/centre_pair_model.cpp): the velocity's Jacobian and the Hessian
 // of w . v (which holds the third derivatives of the sphere centres) and the constraints'
-// derivatives against central differences, for every pair kind, planar and spatial.
+// derivatives against central differences, for every pair kind, planar and spatial; a translating
+// pair's derivatives without structural zeros.
 #include <memory>
 #include <random>
 
@@ -98,6 +99,37 @@ TEST(CentrePairModel, ValuesAreTheGeometricOnes) {
   EXPECT_NEAR(c(5), n.x() * 0.5 + 0.2, 1e-12);  // body 1 against the wall
   // Body 0's sphere sits 0.1 right of and 0.2 below its position: at (1.1, 1.8).
   EXPECT_NEAR(c(6), 0.2 * 0.2 + 1.8 * 1.8 - 0.05, 1e-12);
+}
+
+TEST(CentrePairModel, TranslatingPairsCoupleOnlyTheSameCoordinate) {
+  // Two free discs (state (x0, y0, x1, y1)), one against the other and one against the floor
+  // y >= 0: c = |p0 - p1|^2 - 1 couples x0 with x1 and y0 with y1 only; the floor's
+  // c = y0 - 0.5 depends on y0 alone and is linear.
+  fesd::CentrePairSystem system;
+  system.dimension = 2;
+  system.state_size = 4;
+  system.control_size = 2;
+  system.actuation = {{0, 0}, {1, 1}};
+  const CollisionCentre disc0{CollisionCentre::Source::kFreeBody, 0};
+  const CollisionCentre disc1{CollisionCentre::Source::kFreeBody, 2};
+  system.pairs.push_back({CentrePair::Kind::kCentre, disc0, disc1, Eigen::Vector3d::Zero(), 1.0});
+  system.pairs.push_back({CentrePair::Kind::kWall, disc0, {}, Eigen::Vector3d::UnitY(), 0.5});
+  system.constraint_scales = Eigen::Vector2d(2.0, 1.0);
+  const auto model = fesd::centrePairModel(system, "discs");
+  const fesd::SparsityPattern& jacobian = model->constraints()->jacobianPattern();
+  EXPECT_EQ(jacobian.rows, (std::vector<int>{0, 0, 0, 0, 1}));
+  EXPECT_EQ(jacobian.cols, (std::vector<int>{0, 1, 2, 3, 1}));
+  const fesd::SparsityPattern& hessian = model->constraints()->hessianPattern();
+  ASSERT_EQ(hessian.nonzeros(), 6);  // per coordinate (a, a), (b, b), (b, a)
+  for (int e = 0; e < hessian.nonzeros(); ++e) {
+    EXPECT_EQ(hessian.rows[e] % 2, hessian.cols[e] % 2) << "entry " << e;
+  }
+  // The velocity's x block: B u, and per coordinate the 2 x 2 block of lambda_0 Hess c_0.
+  const fesd::SparsityPattern& velocity = model->velocity()->jacobianPattern();
+  int x_block = 0;
+  for (int e = 0; e < velocity.nonzeros(); ++e) x_block += velocity.cols[e] < 4;
+  EXPECT_EQ(x_block, 8);
+  EXPECT_EQ(velocity.nonzeros(), 2 + 8 + 4 + 1);  // B, curvature, lambda_0's column, lambda_1's
 }
 
 }  // namespace

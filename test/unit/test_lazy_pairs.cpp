@@ -1,10 +1,15 @@
 // The first pairs of a lazy solve (scene/lazy_pairs.cpp): those a guess presses on or brings
 // within the margin of contact, and no others.
+// For robots: the pairs the first guess calls for.
+#include <memory>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "fesd_trajopt/examples/robot_scenes.h"
 #include "fesd_trajopt/scene/lazy_pairs.h"
+#include "fesd_trajopt/scene/robot_guess.h"
+#include "support/robot_files.h"
 
 namespace {
 
@@ -45,20 +50,49 @@ TEST(LazyPairs, TheGuessNeedsWhatItPressesOnAndWhatComesWithinTheMargin) {
                                                   {0, fesd::ContactPair::Kind::kObstacle, 0}};
   // The puck's gap 0.2 is within a margin of 0.3 (R_i + R_j) but not of 0.1; the guess presses
   // on the post; the rock never comes close.
-  fesd::PairSelection wide =
-      fesd::pairsTheGuessNeeds(task, candidates, straightPass(task, 3), 0.3, 64);
+  fesd::PairSelection wide = fesd::pairsTheGuessNeeds(task.scene, task.horizon, candidates,
+                                                      straightPass(task, 3), 0.3, 64);
   EXPECT_EQ(wide.modelled, (std::vector<bool>{true, false, false, true}));
   EXPECT_NE(wide.reasons[0].find("within the margin"), std::string::npos) << wide.reasons[0];
   EXPECT_NE(wide.reasons[3].find("in contact"), std::string::npos) << wide.reasons[3];
-  fesd::PairSelection narrow =
-      fesd::pairsTheGuessNeeds(task, candidates, straightPass(task, 3), 0.1, 64);
+  fesd::PairSelection narrow = fesd::pairsTheGuessNeeds(task.scene, task.horizon, candidates,
+                                                        straightPass(task, 3), 0.1, 64);
   EXPECT_EQ(narrow.modelled, (std::vector<bool>{false, false, false, true}));
   // A pair the guess presses on is needed whatever its gap: the far rock here.
-  fesd::PairSelection pressed =
-      fesd::pairsTheGuessNeeds(task, candidates, straightPass(task, 1), 0.1, 64);
+  fesd::PairSelection pressed = fesd::pairsTheGuessNeeds(task.scene, task.horizon, candidates,
+                                                         straightPass(task, 1), 0.1, 64);
   EXPECT_EQ(pressed.modelled, (std::vector<bool>{false, true, false, false}));
-  EXPECT_TRUE(fesd::withinMargin(task.scene, candidates[0], 0.29, 0.3));
-  EXPECT_FALSE(fesd::withinMargin(task.scene, candidates[0], 0.31, 0.3));
+}
+}  // namespace
+
+namespace {
+
+using fesd::ContactPair;
+
+fesd::SceneTask armPush() {
+  return fesd::planarArmPushTask(
+      std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf")));
+}
+
+TEST(RobotLazyPairs, TheGuessCallsForThePushingSphereNotForTheFarOnes) {
+  const fesd::SceneTask task = armPush();
+  std::vector<ContactPair> candidates;
+  for (const auto& d : fesd::decidePairs(task)) {
+    if (d.modelled) candidates.push_back(d.pair);
+  }
+  const fesd::RobotGuess guess = fesd::planRobotGuess(task, candidates, 2);
+  const std::vector<bool> needed =
+      fesd::pairsTheGuessNeeds(task.scene, task.horizon, candidates, guess.guess, 0.1, 160)
+          .modelled;
+  for (size_t k = 0; k < candidates.size(); ++k) {
+    const std::string name = task.scene.pairName(candidates[k]);
+    if (name == "disc/hand/sphere_0") {
+      EXPECT_TRUE(needed[k]);
+    }
+    if (name == "disc/upper_arm/sphere_0") {  // 0.1 from the shoulder: never near the disc
+      EXPECT_FALSE(needed[k]);
+    }
+  }
 }
 
 }  // namespace

@@ -1,13 +1,16 @@
 // The moving part of a task (scene/moving_part.cpp): a passive body out of reach is left out of
 // the model and keeps its place in the full-scene trajectory of a simulated push; guesses and
-// trajectories of the full task map onto a part with other pairs.
+// trajectories of the full task map onto a part with other pairs; with a robot, the joints
+// always move and its pairs' multipliers follow their pairs.
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "fesd_trajopt/examples/robot_scenes.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/scene/moving_part.h"
 #include "fesd_trajopt/scene/scene_task.h"
+#include "support/robot_files.h"
 #include "support/scene_tasks.h"
 
 namespace {
@@ -88,6 +91,35 @@ TEST(MovingPart, GuessesAndTrajectoriesMapOntoAPartWithOtherPairs) {
   EXPECT_EQ(grown.elements[0].stage_multipliers, Eigen::Vector2d::Zero());  // neither modelled
   const fesd::Trajectory same = fesd::partTrajectory(task, small, full, small.modelled_in_task);
   EXPECT_EQ(same.elements[0].stage_multipliers(0, 0), 0.7);
+}
+
+TEST(MovingPart, ARobotsJointsMoveAndItsPairsMultipliersFollowTheirPairs) {
+  const fesd::SceneTask task = fesd::planarArmPushTask(
+      std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf")));
+  const auto named = [&](const std::string& name) {
+    for (const fesd::ContactPair& pair : task.scene.allPairs()) {
+      if (task.scene.pairName(pair) == name) return pair;
+    }
+    ADD_FAILURE() << "no pair " << name;
+    return fesd::ContactPair{};
+  };
+  const fesd::ContactPair a = named("disc/hand/sphere_0"), b = named("disc/hand/sphere_1"),
+                          c = named("disc/forearm/sphere_2");
+  const fesd::MovingPart part =
+      fesd::movingPart(task, {{c, true, ""}, {b, true, ""}, {a, true, ""}});
+  EXPECT_EQ(part.bodies, (std::vector<int>{0}));
+  EXPECT_EQ(part.task.scene.stateSize(), 5);  // three joints, the disc
+  EXPECT_EQ(part.modelled, (std::vector<fesd::ContactPair>{c, b, a}));
+  fesd::Trajectory trajectory;
+  fesd::ElementValues element;
+  element.stage_states = Eigen::MatrixXd::Zero(5, 2);
+  element.stage_multipliers = (Eigen::MatrixXd(2, 2) << 1, 2, 3, 4).finished();
+  element.stage_constraints = Eigen::MatrixXd::Ones(2, 2);
+  trajectory.elements.push_back(element);
+  const fesd::Trajectory moved = fesd::partTrajectory(task, part, trajectory, {a, b});
+  EXPECT_EQ(moved.elements[0].stage_multipliers,
+            (Eigen::MatrixXd(3, 2) << 0, 0, 3, 4, 1, 2).finished());
+  EXPECT_EQ(moved.elements[0].stage_constraints, Eigen::MatrixXd::Zero(3, 2));
 }
 
 }  // namespace

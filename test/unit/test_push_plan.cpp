@@ -101,7 +101,7 @@ TEST(PushPlan, NothingToPushMovesActuatorsStraightToTheirTargets) {
 TEST(PushPlan, PathsStepAroundWhatTheyWouldPassThrough) {
   // One actuator whose straight path to its target crosses an obstacle's centre.
   fesd::SceneTask task;
-  task.scene = fesd::DiscScene(2);
+  task.scene = fesd::Scene(2);
   task.scene.bodies() = {{"pusher", 0.5, Eigen::Vector2d(-3.0, 0.0), true}};
   task.scene.obstacles() = {{"post", 1.0, Eigen::Vector2d(0.0, 0.0)}};
   fesd::BodyTask pusher;
@@ -132,7 +132,7 @@ TEST(PushPlan, ABodyInThePushedBodysWayIsShovedAlongAsTheProjectionWould) {
   double pressed = 0.0;
   for (double t = 0.0; t <= task.horizon; t += 0.01) {
     const Eigen::VectorXd x = plan.guess.state(t);
-    EXPECT_GT(fesd::pairGap(task.scene, puck_rock, x), -1e-3) << "t = " << t;
+    EXPECT_GT(task.scene.pairGap(puck_rock, x), -1e-3) << "t = " << t;
     pressed = std::max(pressed, plan.guess.multipliers(t)(chain));
   }
   EXPECT_GT(pressed, 0.0);
@@ -166,7 +166,7 @@ TEST(PushPlan, ThePushedBodyGoesAroundAnObstacleInItsWay) {
   double sideways = 0.0;
   for (double t = 0.0; t <= task.horizon; t += 0.005) {
     const Eigen::VectorXd x = plan.guess.state(t);
-    EXPECT_GT(fesd::pairGap(task.scene, puck_post, x), -1e-12) << "t = " << t;
+    EXPECT_GT(task.scene.pairGap(puck_post, x), -1e-12) << "t = " << t;
     sideways = std::max(sideways, std::fabs(x(3)));
   }
   EXPECT_NEAR(sideways, 0.9, 1e-3);  // around it at contact distance, continuously

@@ -1,10 +1,10 @@
-// The random push scenes (scene/push_scenes.cpp): a seed gives the same scene on every machine,
+// The random push scenes (examples/push_scenes.cpp): a seed gives the same scene on every machine,
 // and the sweep's outlier rule. The sweep itself: regression/test_push_scene_sweep.cpp.
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/scene/push_scenes.h"
+#include "fesd_trajopt/examples/push_scenes.h"
 
 namespace {
 

@@ -92,8 +92,7 @@ TEST(RobotFromUrdf, AFreeLinkWithSeveralSpheresIsOneBodyAtTheirMeanThatBoundsThe
     const Eigen::VectorXd mean = (Eigen::VectorXd(3) << 0.7, 0.3, 0.0).finished().head(dim);
     EXPECT_TRUE(body.position.isApprox(mean, 1e-12)) << body.position;
     EXPECT_NEAR(body.radius, 0.1 + 0.05, 1e-12);  // the first sphere's far side
-    ASSERT_EQ(read.free_body_spheres.size(), 1u);
-    const std::vector<fesd::FreeBodySphere>& spheres = read.free_body_spheres[0];
+    const std::vector<fesd::FreeBodySphere>& spheres = body.spheres;
     ASSERT_EQ(spheres.size(), 2u);
     EXPECT_EQ(spheres[0].name, "puck/sphere_0");
     EXPECT_EQ(spheres[1].name, "puck/sphere_1");
@@ -104,8 +103,8 @@ TEST(RobotFromUrdf, AFreeLinkWithSeveralSpheresIsOneBodyAtTheirMeanThatBoundsThe
   }
   // One sphere: the body is that sphere, with no sphere list.
   const fesd::RobotForScene one = fesd::robotForScene(armAndPuck(kSphere), PlanarChoice::kInferred);
-  ASSERT_EQ(one.free_body_spheres.size(), 1u);
-  EXPECT_TRUE(one.free_body_spheres[0].empty());
+  ASSERT_EQ(one.free_bodies.size(), 1u);
+  EXPECT_TRUE(one.free_bodies[0].spheres.empty());
 }
 
 TEST(RobotFromUrdf, AFreeLinkUnderAnOffsetTurnedLinkIsPlacedInTheWorld) {

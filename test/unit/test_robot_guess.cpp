@@ -5,28 +5,28 @@
 
 #include <gtest/gtest.h>
 
+#include "fesd_trajopt/examples/robot_scenes.h"
 #include "fesd_trajopt/kinematics/forward_kinematics.h"
 #include "fesd_trajopt/scene/robot_guess.h"
-#include "fesd_trajopt/scene/robot_scenes.h"
 #include "support/robot_files.h"
 
 namespace {
 
-fesd::RobotTask armPush() {
+fesd::SceneTask armPush() {
   return fesd::planarArmPushTask(
       std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf")));
 }
 
-std::vector<fesd::RobotPair> modelled(const fesd::RobotTask& task) {
-  std::vector<fesd::RobotPair> pairs;
-  for (const auto& d : fesd::decideRobotPairs(task)) {
+std::vector<fesd::ContactPair> modelled(const fesd::SceneTask& task) {
+  std::vector<fesd::ContactPair> pairs;
+  for (const auto& d : fesd::decidePairs(task)) {
     if (d.modelled) pairs.push_back(d.pair);
   }
   return pairs;
 }
 
 TEST(RobotGuess, PushingSphereIsTheToolSphereNearestTheApproachPoint) {
-  const fesd::RobotTask task = armPush();
+  const fesd::SceneTask task = armPush();
   // The disc at (0.6, 0) goes +y: the approach point is below it. Of the hand's spheres at
   // q0 = (-0.6, 0, 0), sphere_0 (0.75 out) is nearer to it than sphere_1 (0.9 out).
   const int sphere = fesd::pushingSphere(task, 0);
@@ -35,8 +35,8 @@ TEST(RobotGuess, PushingSphereIsTheToolSphereNearestTheApproachPoint) {
 }
 
 TEST(RobotGuess, SphereFollowsThePlanAndTheGuessRepeats) {
-  const fesd::RobotTask task = armPush();
-  const std::vector<fesd::RobotPair> pairs = modelled(task);
+  const fesd::SceneTask task = armPush();
+  const std::vector<fesd::ContactPair> pairs = modelled(task);
   const fesd::RobotGuess guess = fesd::planRobotGuess(task, pairs, 2);
   ASSERT_EQ(guess.pushed_body, 0);
   ASSERT_EQ(guess.boundary_joints.size(), static_cast<size_t>(task.num_intervals * 2 + 1));
@@ -63,7 +63,7 @@ TEST(RobotGuess, SphereFollowsThePlanAndTheGuessRepeats) {
 }
 
 TEST(RobotGuess, WithoutAPushTheJointsGoStraightToTheirTargets) {
-  fesd::RobotTask task = armPush();
+  fesd::SceneTask task = armPush();
   task.bodies[0].target_weight = 0.0;
   task.joints[1].target = 0.4;
   task.joints[1].target_weight = 10.0;

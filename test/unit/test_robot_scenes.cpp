@@ -1,4 +1,4 @@
-// The shipped robot scenes (scene/robot_scenes.cpp): the planar-arm push is a valid task whose
+// The shipped robot scenes (examples/robot_scenes.cpp): the planar-arm push is a valid task whose
 // disc is in reach of the arm and apart from it at the start; the Panda push is a valid spatial
 // task with 118 pairs in reach, no sphere touching the puck or the table at the start.
 #include <memory>
@@ -6,18 +6,18 @@
 
 #include <gtest/gtest.h>
 
-#include "fesd_trajopt/scene/robot_scenes.h"
+#include "fesd_trajopt/examples/robot_scenes.h"
 #include "support/robot_files.h"
 
 namespace {
 
 TEST(RobotScenes, PlanarArmPushIsValidAndInReach) {
-  const fesd::RobotTask task = fesd::planarArmPushTask(
+  const fesd::SceneTask task = fesd::planarArmPushTask(
       std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf")));
-  EXPECT_EQ(fesd::validateRobotTask(task, {}), "");
+  EXPECT_EQ(fesd::validateTask(task, {}), "");
   EXPECT_EQ(task.scene.dimension(), 2);
   int modelled_with_disc = 0;
-  for (const fesd::RobotPairDecision& d : fesd::decideRobotPairs(task)) {
+  for (const fesd::PairDecision& d : fesd::decidePairs(task)) {
     modelled_with_disc += d.modelled && d.pair.body == 0;
   }
   EXPECT_GT(modelled_with_disc, 0);
@@ -26,14 +26,14 @@ TEST(RobotScenes, PlanarArmPushIsValidAndInReach) {
 }
 
 TEST(RobotScenes, PandaPushIsValidSpatialAndInReach) {
-  const fesd::RobotTask task = fesd::pandaPushTask(std::make_shared<const fesd::KinematicModel>(
+  const fesd::SceneTask task = fesd::pandaPushTask(std::make_shared<const fesd::KinematicModel>(
       fesd_test::loadShippedRobot("panda_spherized.urdf")));
-  EXPECT_EQ(fesd::validateRobotTask(task, {}), "");
+  EXPECT_EQ(fesd::validateTask(task, {}), "");
   EXPECT_EQ(task.scene.dimension(), 3);
   EXPECT_EQ(task.scene.robot().spheres.size(), 59u);
-  const std::vector<fesd::RobotPairDecision> decisions = fesd::decideRobotPairs(task);
+  const std::vector<fesd::PairDecision> decisions = fesd::decidePairs(task);
   int in_reach = 0;
-  for (const fesd::RobotPairDecision& d : decisions) {
+  for (const fesd::PairDecision& d : decisions) {
     in_reach += d.modelled;
     // The puck rests on the table; every sphere of the robot starts apart from both.
     const double gap = task.scene.pairGap(d.pair, task.scene.initialState());

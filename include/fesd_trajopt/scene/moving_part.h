@@ -12,9 +12,9 @@ namespace fesd {
 /// velocity is the projection of f = 0), so it is left out of the optimisation altogether:
 /// no states, no dynamics, no constraints; only its constant position is reported.
 struct MovingPart {
-  SceneTask task;                     ///< the moving bodies only; obstacles and walls as given
-  std::vector<int> bodies;            ///< their indices in the full task, in order
-  std::vector<ContactPair> modelled;  ///< the modelled pairs in the same order, re-indexed
+  SceneTask task;           ///< the robot and the moving bodies only; obstacles and walls as given
+  std::vector<int> bodies;  ///< their indices in the full task, in order
+  std::vector<ContactPair> modelled;          ///< the modelled pairs in the same order, re-indexed
   std::vector<ContactPair> modelled_in_task;  ///< the same pairs with the full task's indices
 };
 

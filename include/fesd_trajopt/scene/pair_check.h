@@ -4,25 +4,31 @@
 
 #include <Eigen/Dense>
 
-#include "fesd_trajopt/scene/disc_scene.h"
+#include "fesd_trajopt/scene/scene.h"
 
 namespace fesd {
-
-/// The length that a pair's margins are relative to: the sum of its radii (a wall has none).
-double pairSize(const DiscScene& scene, const ContactPair& pair);
 
 /// Distance from p to the segment from a to b.
 double segmentDistance(const Eigen::VectorXd& p, const Eigen::VectorXd& a,
                        const Eigen::VectorXd& b);
 
-/// The signed gap between a pair's surfaces at a state of the scene (negative: overlap).
-double pairGap(const DiscScene& scene, const ContactPair& pair, const Eigen::VectorXd& x);
-
-/// The smallest gap between a pair's surfaces along the piecewise-linear path through `path`
-/// (states of the scene, in time order): exact for straight motion between consecutive states,
-/// since it takes the closest approach of the relative position on each segment, not only its
-/// ends. So a thin body between two samples is not jumped over. Infinity for an empty path.
-double smallestGap(const DiscScene& scene, const ContactPair& pair,
+/// The smallest gap between each pair's surfaces along the piecewise-linear path through `path`
+/// (states of the scene, in time order), with one forward kinematics per state for all pairs.
+/// Exact for centres that move straight between consecutive states (a free body's): it takes the
+/// closest approach of the relative position on each segment, not only its ends, so a thin body
+/// between two samples is not jumped over. A robot sphere moves on arcs: pass a dense path
+/// (densePath). Infinity for an empty path.
+std::vector<double> smallestGaps(const Scene& scene, const std::vector<ContactPair>& pairs,
+                                 const std::vector<Eigen::VectorXd>& path);
+double smallestGap(const Scene& scene, const ContactPair& pair,
                    const std::vector<Eigen::VectorXd>& path);
+
+/// The smallest gap of each pair over the given states only (where a plan holds c >= 0: its
+/// stage points); infinity for no state.
+std::vector<double> smallestGapsAt(const Scene& scene, const std::vector<ContactPair>& pairs,
+                                   const std::vector<Eigen::VectorXd>& states);
+
+/// A pair's gap compared with its margin: closer than `margin` times Scene::pairSize.
+bool withinMargin(const Scene& scene, const ContactPair& pair, double gap, double margin);
 
 }  // namespace fesd

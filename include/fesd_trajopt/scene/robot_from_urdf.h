@@ -5,8 +5,7 @@
 #include <vector>
 
 #include "fesd_trajopt/kinematics/kinematic_model.h"
-#include "fesd_trajopt/scene/disc_scene.h"
-#include "fesd_trajopt/scene/robot_scene.h"
+#include "fesd_trajopt/scene/scene.h"
 
 namespace fesd {
 
@@ -19,10 +18,8 @@ struct RobotForScene {
   int dimension = 3;
   /// The robot's free links (planar or floating joints) as passive free bodies at their URDF
   /// poses, named after their links: at the mean of their spheres' centres, of the radius that
-  /// bounds them.
+  /// bounds them, carrying their spheres when they are several.
   std::vector<SceneBody> free_bodies;
-  /// Per free body, its spheres when it carries several (empty: the body is its one sphere).
-  std::vector<std::vector<FreeBodySphere>> free_body_spheres;
   std::string error;
 };
 

@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "fesd_trajopt/discretization/trajectory_guess.h"
-#include "fesd_trajopt/scene/robot_task.h"
+#include "fesd_trajopt/scene/scene_task.h"
 
 namespace fesd {
 
@@ -12,7 +12,7 @@ namespace fesd {
 /// centre at q0 is nearest to the approach point, the point behind the body opposite its push
 /// direction at the sum of the radii. Ties go to the lower sphere index. -1 without spheres or
 /// without an actuated joint. The guess holds passive joints still (IK's held coordinates).
-int pushingSphere(const RobotTask& task, int pushed_body);
+int pushingSphere(const SceneTask& task, int pushed_body);
 
 /// A deterministic first guess for a robot task:
 ///  - the pushed body: the first passive free body with a weighted target (none: the robot
@@ -32,7 +32,7 @@ struct RobotGuess {
   /// The joints at the element boundaries (their times are horizon * k / boundaries.size() - 1).
   std::vector<Eigen::VectorXd> boundary_joints;
 };
-RobotGuess planRobotGuess(const RobotTask& task, const std::vector<RobotPair>& pairs,
+RobotGuess planRobotGuess(const SceneTask& task, const std::vector<ContactPair>& pairs,
                           int elements_per_interval);
 
 }  // namespace fesd

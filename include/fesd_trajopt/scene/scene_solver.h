@@ -22,16 +22,22 @@ struct SceneOutcome {
   std::string invalid;     ///< why validateTask refused the task; "" when valid
   std::string infeasible;  ///< why infeasibility() says the goals cannot be met; "" otherwise
   std::vector<PairDecision> decisions;  ///< every pair of the scene: modelled or why not
+  std::vector<ContactPair> modelled;    ///< the last NLP's constraints, in order
   std::vector<int> moving_bodies;       ///< the bodies with states (MovingPart::bodies)
+  int pusher_sphere = -1;  ///< the robot sphere the first guess pushes with (planRobotGuess)
   SolveStatus status = SolveStatus::kSolverError;
   std::string message;
   OcpStart start = OcpStart::kConstant;  ///< the solve's start (not for simulations)
   Trajectory trajectory;                 ///< of the full scene: frozen bodies at their start
   MpccReport report;                     ///< the solve's, or a simulation's totals
   NlpSizes sizes;                        ///< the solve's NLP (a simulation's step NLP: none)
+  /// The smallest gap of the modelled pairs at the element boundaries (negative: penetration).
+  double boundary_gap = std::numeric_limits<double>::quiet_NaN();
   bool verified = false;
   /// Distance of the re-simulated terminal state from the solution's (resimulationError).
   double verification_error = std::numeric_limits<double>::quiet_NaN();
+  /// The smallest gap of every pair in reach at the verification's element boundaries.
+  double verification_gap = std::numeric_limits<double>::quiet_NaN();
   PlanStructure structure;  ///< of the solve (not for simulations)
   /// A warm start was asked for but the solve started cold (or fell back to cold): why.
   std::string cold_start_reason;
@@ -44,6 +50,8 @@ struct SceneOutcome {
   int pair_rounds = 0;
   /// Per body: its end position's distance from its target (NaN without a target).
   std::vector<double> target_distances;
+  /// Per joint: |q_j(T) - target| (NaN without a target).
+  std::vector<double> joint_target_distances;
 
   bool solved() const { return invalid.empty() && infeasible.empty(); }
   int modelledPairs() const {
@@ -69,6 +77,15 @@ struct SceneSolveOptions {
   /// that solution, until none does. Then the answer solves the problem with every pair in
   /// reach. false: every pair in reach is modelled from the start.
   bool lazy_pairs = true;
+  /// With lazy_pairs, a task with at most this many pairs in reach models them all anyway (few
+  /// pairs are cheap, and lazy rounds can end in other local optima: on the arm push 2 of 9 pairs
+  /// in a local optimum its re-simulation missed by 6e-2, against 3e-5 with all pairs).
+  int all_pairs_up_to = 0;
+  /// A later lazy round resumes the homotopy at the tightest relaxation the round before reached
+  /// (its solution is nearly this round's) instead of starting at guess_sigma. Same optima on the
+  /// planning sweep, in less time; on the arm push (robot-push --robot=planar_arm) it ends in
+  /// another local optimum (objective 2.0e-4 against 1.4e-4), so robot solves start over.
+  bool resume_relaxation = true;
   double pair_margin = 0.1;  ///< lazy pairs' margin, relative to the pair's size (pairSize)
   /// Re-simulate the optimal controls finely with every pair in reach modelled and report the
   /// end state's deviation.
@@ -82,11 +99,13 @@ struct SceneSolveOptions {
   const SolveMonitor* monitor = nullptr;  ///< progress and cancel of the solve; not owned
 };
 
-/// The planning entry point of a scene task: validateTask, infeasibility, decidePairs, the push
-/// plan of the pairs in reach (a deterministic guess: the same task gives the same plan on every
-/// machine), then rounds of movingPart, buildOcp and OcpSolver over the modelled pairs (lazy
-/// pairs: the first round from the push plan, each later one from the round before), the
-/// trajectory of the full scene and, on request, the verification.
+/// The planning entry point of a scene task: validateTask, infeasibility, decidePairs, the first
+/// guess of the pairs in reach (the push plan, or for a robot its inverse kinematics:
+/// planRobotGuess; deterministic, so the same task gives the same plan on every machine), then
+/// rounds of movingPart, buildOcp and OcpSolver over the modelled pairs (lazy pairs: the first
+/// round from the guess, each later one from the round before), the trajectory of the full scene,
+/// the targets judged (a success that misses a weighted target by more than targetTolerance is
+/// kTargetNotReached) and, on request, the verification.
 SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
                             const SceneSolveOptions& options);
 
@@ -106,6 +125,8 @@ struct Verification {
   Trajectory trajectory;  ///< of the full scene
   /// Distance of the re-simulated end state from the outcome's; infinity when it failed.
   double error = std::numeric_limits<double>::infinity();
+  /// The smallest gap of every pair in reach at the re-simulation's element boundaries.
+  double gap = std::numeric_limits<double>::quiet_NaN();
   int modelled_pairs = 0;  ///< in the last re-simulation
 };
 Verification verifyOutcome(const SceneTask& task, const SceneOutcome& outcome,
@@ -118,6 +139,10 @@ Verification verifyOutcome(const SceneTask& task, const SceneOutcome& outcome,
 /// rung of this ladder) starts the ladder on that rung.
 SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
                              SceneSolveOptions options, double target_accuracy);
+
+/// The smallest gap of `pairs` over the states at the trajectory's element boundaries.
+double smallestBoundaryGap(const Scene& scene, const std::vector<ContactPair>& pairs,
+                           const Trajectory& trajectory);
 
 /// The simulation entry point: the scene moved by given controls (per step, the full scene's
 /// control vector; one value for all steps, or num_intervals values). Physics only: workspace

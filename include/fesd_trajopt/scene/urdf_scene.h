@@ -3,13 +3,13 @@
 #include <string>
 #include <vector>
 
-#include "fesd_trajopt/scene/disc_scene.h"
+#include "fesd_trajopt/scene/scene.h"
 
 namespace fesd {
 
 /// A scene read from URDF, or the reason it could not be.
 struct UrdfScene {
-  DiscScene scene{2};
+  Scene scene{2};
   std::vector<std::string> ignored_links;  ///< links without usable collision geometry
   std::string error;                       ///< empty on success
 };

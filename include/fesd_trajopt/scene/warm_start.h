@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "fesd_trajopt/discretization/discretization_options.h"
-#include "fesd_trajopt/scene/disc_scene.h"
+#include "fesd_trajopt/scene/scene.h"
 
 namespace fesd {
 

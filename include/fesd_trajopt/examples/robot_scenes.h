@@ -2,7 +2,7 @@
 
 #include <memory>
 
-#include "fesd_trajopt/scene/robot_task.h"
+#include "fesd_trajopt/scene/scene_task.h"
 
 namespace fesd {
 
@@ -10,12 +10,12 @@ namespace fesd {
 /// the arm starts at q0 = (-0.6, 0, 0), pointing below the x axis, and pushes a disc of radius
 /// 0.05 at (0.6, 0) to (0.6, 0.2) (weight 100) within 2 s on 10 control intervals, the joints
 /// at their URDF speed limits; no joint targets.
-RobotTask planarArmPushTask(std::shared_ptr<const KinematicModel> arm);
+SceneTask planarArmPushTask(std::shared_ptr<const KinematicModel> arm);
 
 /// The shipped Panda push (config/robots/panda_spherized.urdf, VAMP's 59 spheres): from the
 /// ready pose q0 = (0, -0.785, 0, -2.356, 0, 1.571, 0.785) the arm pushes a puck (a sphere of
 /// radius 0.05 resting on the table z >= 0) from (0.45, 0, 0.05) to (0.65, 0, 0.05) (weight 100)
 /// within 2 s on 5 control intervals, the joints at their URDF speed limits; no joint targets.
-RobotTask pandaPushTask(std::shared_ptr<const KinematicModel> panda);
+SceneTask pandaPushTask(std::shared_ptr<const KinematicModel> panda);
 
 }  // namespace fesd

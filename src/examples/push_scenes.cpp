@@ -1,11 +1,11 @@
-#include "fesd_trajopt/scene/push_scenes.h"
+#include "fesd_trajopt/examples/push_scenes.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
-#include "fesd_trajopt/scene/seeded_random.h"
+#include "fesd_trajopt/examples/seeded_random.h"
 
 namespace fesd {
 namespace push_scenes {
@@ -26,7 +26,7 @@ Eigen::VectorXd randomPerpendicular(SeededUniform& random, const Eigen::VectorXd
 
 constexpr double kStartGap = 0.05;
 
-bool apart(const DiscScene& scene, const Eigen::VectorXd& position, double radius) {
+bool apart(const Scene& scene, const Eigen::VectorXd& position, double radius) {
   for (const SceneBody& body : scene.bodies()) {
     if ((body.position - position).norm() < body.radius + radius + kStartGap) return false;
   }
@@ -139,7 +139,7 @@ PushScene randomPushScene(unsigned seed) {
   PushScene s;
   s.seed = seed;
   const int dim = random() < 0.5 ? 2 : 3;
-  s.scene = DiscScene(dim);
+  s.scene = Scene(dim);
   const double pusher_radius = random(0.5, 1.5), object_radius = random(0.5, 1.5);
   const double distance = pusher_radius + object_radius;
   const double speed = random(0.5, 2.0);

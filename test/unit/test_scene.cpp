@@ -1,40 +1,99 @@
-// Robots in scenes (scene/robot_scene.cpp): the state's layout, which pairs exist (spheres on
-// one link never pair, self-collision only on request between non-adjacent links, SRDF pairs
-// left out, a sphere fixed to the world only against free bodies), pair names and gaps, and the
-// analytic check: the shoulder turning at constant speed meets a post when and where geometry
-// says, to 1e-8.
+// The scene model (scene/scene.cpp). Free bodies: the contact model's velocity and constraint
+// derivatives against central finite differences in 2-D and 3-D, and the constraint values pair
+// by pair. Robots in scenes: the state's layout, which pairs exist (spheres on one link never
+// pair, self-collision only on request between non-adjacent links, SRDF pairs left out, a sphere
+// fixed to the world only against free bodies), pair names and gaps, and the analytic check: the
+// shoulder turning at constant speed meets a post when and where geometry says, to 1e-8.
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/kinematics/srdf.h"
-#include "fesd_trajopt/scene/robot_scene.h"
+#include "fesd_trajopt/scene/scene.h"
+#include "support/finite_differences.h"
 #include "support/robot_files.h"
 
 namespace {
 
-using fesd::RobotPair;
-using fesd::RobotScene;
+using fesd_test::checkAgainstFiniteDifferences;
+using fesd_test::kTolerance;
+using fesd_test::randomVector;
+
+/// A scene with every kind of contact pair: bodies (actuated and passive), an obstacle, walls.
+fesd::Scene mixedScene(int dimension, std::mt19937& random) {
+  fesd::Scene scene(dimension);
+  for (int b = 0; b < 4; ++b) {
+    scene.bodies().push_back({"body" + std::to_string(b), 0.5 + 0.2 * b,
+                              randomVector(dimension, random, -3.0, 3.0), b % 2 == 0});
+  }
+  scene.obstacles().push_back({"post", 0.7, randomVector(dimension, random, -3.0, 3.0)});
+  Eigen::VectorXd normal = randomVector(dimension, random);
+  scene.walls().push_back({"slanted", normal.normalized(), -4.0});
+  Eigen::VectorXd axis = Eigen::VectorXd::Zero(dimension);
+  axis(1) = 1.0;
+  scene.walls().push_back({"floor", axis, -5.0});  // a normal with zero components
+  return scene;
+}
+
+class SceneDerivatives : public ::testing::TestWithParam<int> {};
+
+TEST_P(SceneDerivatives, VelocityAndConstraintsAgainstFiniteDifferences) {
+  std::mt19937 random(23);
+  const fesd::Scene scene = mixedScene(GetParam(), random);
+  const auto pairs = scene.allPairs();
+  const auto model = scene.model(pairs);
+  EXPECT_EQ(model->constraintSize(), 6 + 4 + 8);  // 6 body pairs, 4 obstacle, 8 wall pairs
+  EXPECT_EQ(model->controlSize(), 2 * GetParam());
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd z = randomVector(model->velocity()->inputSize(), random, -3.0, 3.0);
+    const auto velocity = checkAgainstFiniteDifferences(*model->velocity(), z,
+                                                        randomVector(scene.stateSize(), random));
+    EXPECT_LT(velocity.jacobian, kTolerance);
+    EXPECT_LT(velocity.hessian, kTolerance);
+    const Eigen::VectorXd x = z.head(scene.stateSize());
+    const auto constraints = checkAgainstFiniteDifferences(
+        *model->constraints(), x, randomVector(model->constraintSize(), random));
+    EXPECT_LT(constraints.jacobian, kTolerance);
+    EXPECT_LT(constraints.hessian, kTolerance);
+    // The constraint values are the geometric ones, pair by pair.
+    Eigen::VectorXd c(model->constraintSize());
+    model->constraints()->evaluate(x.data(), c.data());
+    for (size_t k = 0; k < pairs.size(); ++k) {
+      EXPECT_DOUBLE_EQ(c(k), scene.constraintValue(pairs[k], x)) << scene.pairName(pairs[k]);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(PlanarAndSpatial, SceneDerivatives, ::testing::Values(2, 3));
+
+}  // namespace
+
+namespace {
+
+using fesd::ContactPair;
+using fesd::Scene;
 
 std::shared_ptr<const fesd::KinematicModel> shipped(const std::string& name) {
   return std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot(name));
 }
 
 /// The planar arm at q = 0 with a passive disc, a post and a wall.
-RobotScene armScene() {
-  fesd::DiscScene discs(2);
+Scene armScene() {
+  fesd::Scene discs(2);
   discs.bodies().push_back({"disc", 0.05, Eigen::Vector2d(0.6, 0.3), false});
   discs.obstacles().push_back({"post", 0.05, Eigen::Vector2d(-0.5, 0.5)});
   discs.walls().push_back({"floor", Eigen::Vector2d(0.0, 1.0), -1.0});
-  return RobotScene(shipped("planar_arm.urdf"), Eigen::Vector3d::Zero(), discs);
+  return robotInScene(shipped("planar_arm.urdf"), Eigen::Vector3d::Zero(), discs);
 }
 
-std::vector<std::string> pairNames(const RobotScene& scene) {
+std::vector<std::string> pairNames(const Scene& scene) {
   std::vector<std::string> names;
-  for (const RobotPair& pair : scene.allPairs()) names.push_back(scene.pairName(pair));
+  for (const ContactPair& pair : scene.allPairs()) names.push_back(scene.pairName(pair));
   return names;
 }
 
@@ -42,19 +101,19 @@ bool contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
-TEST(RobotScene, StateIsJointsThenBodies) {
-  const RobotScene scene = armScene();
+TEST(Scene, StateIsJointsThenBodies) {
+  const Scene scene = armScene();
   EXPECT_EQ(scene.stateSize(), 3 + 2);
   EXPECT_EQ(scene.controlSize(), 3);
-  EXPECT_EQ(scene.bodyStateIndex(0), 3);
+  EXPECT_EQ(scene.stateIndex(0), 3);
   EXPECT_EQ(scene.initialState(), (Eigen::VectorXd(5) << 0, 0, 0, 0.6, 0.3).finished());
   ASSERT_EQ(scene.collisionBodies().size(), 1u + 9u);
   EXPECT_EQ(scene.collisionBodies()[0].name, "disc");
   EXPECT_EQ(scene.collisionBodies()[scene.sphereBody(8)].name, "hand/sphere_1");
 }
 
-TEST(RobotScene, PairsOfEveryKindButNoSelfCollisionByDefault) {
-  const RobotScene scene = armScene();
+TEST(Scene, PairsOfEveryKindButNoSelfCollisionByDefault) {
+  const Scene scene = armScene();
   const std::vector<std::string> names = pairNames(scene);
   EXPECT_TRUE(contains(names, "disc/hand/sphere_1"));
   EXPECT_TRUE(contains(names, "disc/base/sphere_0"));  // the base is an obstacle to the disc
@@ -66,8 +125,8 @@ TEST(RobotScene, PairsOfEveryKindButNoSelfCollisionByDefault) {
   EXPECT_EQ(names.size(), 9u + 8u * 2u + 2u);
 }
 
-TEST(RobotScene, SelfCollisionOnlyBetweenNonAdjacentLinksNotDisabled) {
-  RobotScene scene = armScene();
+TEST(Scene, SelfCollisionOnlyBetweenNonAdjacentLinksNotDisabled) {
+  Scene scene = armScene();
   scene.self_collision = true;
   std::vector<std::string> names = pairNames(scene);
   EXPECT_TRUE(contains(names, "upper_arm/sphere_0/hand/sphere_1"));
@@ -84,10 +143,10 @@ TEST(RobotScene, SelfCollisionOnlyBetweenNonAdjacentLinksNotDisabled) {
   EXPECT_TRUE(contains(names, "base/sphere_0/hand/sphere_1"));
 }
 
-TEST(RobotScene, GapsAreDistancesBetweenSurfaces) {
-  const RobotScene scene = armScene();
+TEST(Scene, GapsAreDistancesBetweenSurfaces) {
+  const Scene scene = armScene();
   const Eigen::VectorXd x0 = scene.initialState();
-  for (const RobotPair& pair : scene.allPairs()) {
+  for (const ContactPair& pair : scene.allPairs()) {
     if (scene.pairName(pair) == "disc/hand/sphere_1") {
       EXPECT_NEAR(scene.pairGap(pair, x0), std::hypot(0.3, 0.3) - 0.08, 1e-12);
     }
@@ -97,7 +156,7 @@ TEST(RobotScene, GapsAreDistancesBetweenSurfaces) {
   }
 }
 
-TEST(RobotScene, ANameNamesItsBodyOrTheSpheresOfItsLink) {
+TEST(Scene, ANameNamesItsBodyOrTheSpheresOfItsLink) {
   EXPECT_TRUE(fesd::namesSide("hand", "hand"));
   EXPECT_TRUE(fesd::namesSide("hand", "hand/sphere_1"));
   EXPECT_TRUE(fesd::namesSide("hand/sphere_1", "hand/sphere_1"));
@@ -106,15 +165,16 @@ TEST(RobotScene, ANameNamesItsBodyOrTheSpheresOfItsLink) {
   EXPECT_FALSE(fesd::namesSide("hand", "handle"));
 }
 
-TEST(RobotScene, AFreeBodyWithSeveralSpheresPairsSphereBySphere) {
-  fesd::DiscScene discs(2);
+TEST(Scene, AFreeBodyWithSeveralSpheresPairsSphereBySphere) {
+  fesd::Scene discs(2);
   discs.bodies().push_back({"bar", 0.1, Eigen::Vector2d(0.6, 0.3), false});
   discs.bodies().push_back({"disc", 0.05, Eigen::Vector2d(0.6, 0.6), false});
   discs.walls().push_back({"floor", Eigen::Vector2d(0.0, 1.0), -1.0});
   const std::vector<fesd::FreeBodySphere> bar = {
       {"bar/sphere_0", Eigen::Vector3d(-0.06, 0.0, 0.0), 0.04},
       {"bar/sphere_1", Eigen::Vector3d(0.06, 0.0, 0.0), 0.04}};
-  const RobotScene scene(shipped("planar_arm.urdf"), Eigen::Vector3d::Zero(), discs, {bar});
+  discs.bodies()[0].spheres = bar;
+  const Scene scene = robotInScene(shipped("planar_arm.urdf"), Eigen::Vector3d::Zero(), discs);
   ASSERT_EQ(scene.collisionBodies().size(), 2u + 1u + 9u);
   EXPECT_EQ(scene.freeBodyCollisionBodies(0), (std::vector<int>{0, 1}));
   EXPECT_EQ(scene.freeBodyCollisionBodies(1), (std::vector<int>{2}));
@@ -126,7 +186,7 @@ TEST(RobotScene, AFreeBodyWithSeveralSpheresPairsSphereBySphere) {
     EXPECT_TRUE(contains(names, name)) << name;
   }
   const Eigen::VectorXd x0 = scene.initialState();
-  for (const RobotPair& pair : scene.allPairs()) {
+  for (const ContactPair& pair : scene.allPairs()) {
     const std::string name = scene.pairName(pair);
     if (name == "bar/sphere_1/disc") {
       EXPECT_NEAR(scene.pairGap(pair, x0), std::hypot(0.06, 0.3) - 0.09, 1e-12);
@@ -140,18 +200,18 @@ TEST(RobotScene, AFreeBodyWithSeveralSpheresPairsSphereBySphere) {
   }
 }
 
-TEST(RobotScene, ShoulderTurningAtConstantSpeedMeetsThePostAtTheComputedTime) {
+TEST(Scene, ShoulderTurningAtConstantSpeedMeetsThePostAtTheComputedTime) {
   // At q = 0 the arm lies along x with its tip sphere (radius 0.03) at 0.9. The shoulder turning
   // at omega sweeps it along the circle of radius 0.9; a post of radius 0.05 on that circle at
   // angle phi is met when the chord between them is 0.08: theta* = phi - 2 asin(0.08 / 1.8).
   const double omega = 0.5, phi = 0.6, radius = 0.9, radii = 0.03 + 0.05;
-  fesd::DiscScene discs(2);
+  fesd::Scene discs(2);
   discs.obstacles().push_back(
       {"post", 0.05, Eigen::Vector2d(radius * std::cos(phi), radius * std::sin(phi))});
-  const RobotScene scene(shipped("planar_arm.urdf"), Eigen::Vector3d::Zero(), discs);
-  std::vector<RobotPair> pairs;
+  const Scene scene = robotInScene(shipped("planar_arm.urdf"), Eigen::Vector3d::Zero(), discs);
+  std::vector<ContactPair> pairs;
   int tip_pair = -1;
-  for (const RobotPair& pair : scene.allPairs()) {
+  for (const ContactPair& pair : scene.allPairs()) {
     if (scene.pairName(pair) == "hand/sphere_1/post") tip_pair = static_cast<int>(pairs.size());
     pairs.push_back(pair);
   }
@@ -186,11 +246,11 @@ TEST(RobotScene, ShoulderTurningAtConstantSpeedMeetsThePostAtTheComputedTime) {
 
 namespace {
 
-TEST(RobotScene, SrdfDisabledPairsLeaveSelfCollisionOfThePanda) {
-  fesd::DiscScene discs(3);
+TEST(Scene, SrdfDisabledPairsLeaveSelfCollisionOfThePanda) {
+  fesd::Scene discs(3);
   const Eigen::VectorXd ready =
       (Eigen::VectorXd(7) << 0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785).finished();
-  RobotScene scene(shipped("panda_spherized.urdf"), ready, discs);
+  Scene scene = robotInScene(shipped("panda_spherized.urdf"), ready, discs);
   EXPECT_TRUE(pairNames(scene).empty());  // nothing else in the scene, no self-collision
   scene.self_collision = true;
   const size_t all_self = scene.allPairs().size();
@@ -199,10 +259,10 @@ TEST(RobotScene, SrdfDisabledPairsLeaveSelfCollisionOfThePanda) {
       fesd::disabledCollisionsFromSrdf(fesd_test::readRobotFile("panda.srdf"));
   ASSERT_EQ(srdf.error, "");
   scene.disabled_link_pairs = srdf.pairs;
-  const std::vector<RobotPair> kept = scene.allPairs();
+  const std::vector<ContactPair> kept = scene.allPairs();
   EXPECT_LT(kept.size(), all_self);
   const Eigen::VectorXd x0 = scene.initialState();
-  for (const RobotPair& pair : kept) {
+  for (const ContactPair& pair : kept) {
     const auto link = [&](int body) {
       return scene.robot()
           .links[scene.robot().spheres[scene.collisionBodies()[body].sphere].link]

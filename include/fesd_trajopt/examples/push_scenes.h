@@ -7,7 +7,7 @@
 #include <Eigen/Dense>
 
 #include "fesd_trajopt/integrator/fesd_integrator.h"
-#include "fesd_trajopt/scene/disc_scene.h"
+#include "fesd_trajopt/scene/scene.h"
 
 namespace fesd {
 
@@ -22,7 +22,7 @@ const std::vector<int>& sweepGrids();
 
 struct PushScene {
   unsigned seed = 0;
-  DiscScene scene{2};        ///< body 0 is the pusher
+  Scene scene{2};            ///< body 0 is the pusher
   Eigen::VectorXd velocity;  ///< the pusher's constant velocity (the only control)
   double horizon = 1.0;
   double contact_time = 0.0;  ///< the pusher touches body 1

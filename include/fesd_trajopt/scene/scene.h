@@ -1,0 +1,165 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "fesd_trajopt/kinematics/kinematic_model.h"
+#include "fesd_trajopt/model/dcs_model.h"
+#include "fesd_trajopt/scene/centre_pair_model.h"
+
+namespace fesd {
+
+/// One of several spheres a free body carries (a free link of a URDF): it translates with the
+/// body's position and never rotates.
+struct FreeBodySphere {
+  std::string name;        ///< "<link>/sphere_<k>"
+  Eigen::Vector3d offset;  ///< from the body's position
+  double radius;
+};
+
+/// A free disc (2-D) or sphere (3-D): a link on a translation joint from the world. Actuated
+/// bodies are velocity-controlled (pdot = u); passive ones only move when pushed.
+struct SceneBody {
+  std::string name;
+  double radius = 1.0;
+  Eigen::VectorXd position;  ///< initial position
+  bool actuated = false;
+  /// The spheres it carries when several; empty: it is one sphere of `radius` at `position`.
+  std::vector<FreeBodySphere> spheres = {};
+};
+
+/// A fixed disc or sphere.
+struct SceneObstacle {
+  std::string name;
+  double radius = 1.0;
+  Eigen::VectorXd position;
+};
+
+/// A fixed half-space boundary: bodies stay on the side  normal . p >= offset  (normal of unit
+/// length, pointing into the free side).
+struct SceneWall {
+  std::string name;
+  Eigen::VectorXd normal;
+  double offset = 0.0;
+};
+
+/// What collides: a free body (or one of its spheres) or a sphere of the robot.
+struct CollisionBody {
+  std::string name;  ///< the body's name, or "<link>/sphere_<k>"
+  double radius;
+  CollisionCentre centre;
+  int sphere = -1;     ///< the robot sphere, -1 for a free body's
+  int free_body = -1;  ///< the free body it belongs to, -1 for a robot sphere
+};
+
+/// A contact the model may enforce: collision body `body` (Scene::collisionBodies) against
+/// another collision body, an obstacle or a wall.
+struct ContactPair {
+  enum class Kind { kBody, kObstacle, kWall };
+  int body;
+  Kind kind;
+  int other;  ///< index into the collision bodies, obstacles or walls
+
+  bool operator==(const ContactPair& o) const {
+    return body == o.body && kind == o.kind && other == o.other;
+  }
+};
+
+/// Whether `name` names the collision body `side`: as that body, obstacle or wall, or as the
+/// link (or free body) whose sphere `<name>/sphere_<k>` it is.
+bool namesSide(const std::string& name, const std::string& side);
+
+/// Free bodies, obstacles, walls and optionally a robot (a KinematicModel, velocity-controlled:
+/// qdot = u_q), in the plane or in space, as one projected dynamical system. The state is
+/// x = (q, the free bodies' positions), the controls u = (u_q, the actuated bodies' velocities),
+/// f(x, u) = B u. A free body is a link on a translation joint, a robot sphere hangs on its
+/// chain; both are collision bodies (CollisionCentre), so every pair's constraint
+///   c = |p_a(x) - p_b(x)|^2 - (r_a + r_b)^2,  |p_a(x) - o|^2 - (r_a + r_o)^2  or
+///   n . p_a(x) - offset - r_a
+/// is one function of centres whatever they belong to (centrePairModel: exact sparse
+/// derivatives). A planar scene (dimension 2) takes the spheres' (x, y), exact for a planar
+/// robot (isPlanar).
+class Scene {
+ public:
+  explicit Scene(int dimension) : dimension_(dimension) {}
+
+  int dimension() const { return dimension_; }
+  std::vector<SceneBody>& bodies() { return bodies_; }
+  const std::vector<SceneBody>& bodies() const { return bodies_; }
+  std::vector<SceneObstacle>& obstacles() { return obstacles_; }
+  const std::vector<SceneObstacle>& obstacles() const { return obstacles_; }
+  std::vector<SceneWall>& walls() { return walls_; }
+  const std::vector<SceneWall>& walls() const { return walls_; }
+
+  /// Puts a robot at joints q0 in the scene (one value per coordinate, else invalid_argument).
+  void setRobot(std::shared_ptr<const KinematicModel> robot, Eigen::VectorXd q0);
+  bool hasRobot() const { return robot_ != nullptr; }
+  const KinematicModel& robot() const { return *robot_; }
+  const std::shared_ptr<const KinematicModel>& robotPointer() const { return robot_; }
+  const Eigen::VectorXd& initialJoints() const { return q0_; }
+  int numJoints() const { return robot_ ? robot_->numCoordinates() : 0; }
+  /// Self-collision between spheres of non-adjacent links (off by default).
+  bool self_collision = false;
+  /// Link pairs that never collide (an SRDF's disable_collisions), either order.
+  std::vector<std::pair<std::string, std::string>> disabled_link_pairs;
+
+  int stateSize() const { return numJoints() + dimension_ * static_cast<int>(bodies_.size()); }
+  int controlSize() const;
+  /// First state index of a free body's position.
+  int stateIndex(int body) const { return numJoints() + dimension_ * body; }
+  /// A free body's position at a state of the scene.
+  Eigen::VectorXd position(int body, const Eigen::VectorXd& x) const {
+    return x.segment(stateIndex(body), dimension_);
+  }
+  /// First control index of a free body's velocity, or -1 for a passive body.
+  int controlIndex(int body) const;
+  Eigen::VectorXd initialState() const;
+
+  /// The free bodies first, in order (each one, or its spheres), then every robot sphere.
+  std::vector<CollisionBody> collisionBodies() const;
+  /// The collision body of a robot sphere.
+  int sphereBody(int sphere) const;
+  /// The collision bodies of a free body (one, or one per sphere).
+  std::vector<int> freeBodyCollisionBodies(int body) const;
+
+  /// Every pair that may touch: each collision body with the later ones (never two of one free
+  /// body; two robot spheres only with self_collision, on non-adjacent links not disabled and
+  /// apart at the start) and, when it moves, with every obstacle and wall.
+  std::vector<ContactPair> allPairs() const;
+  std::string pairName(const ContactPair& pair) const;
+  /// The names of a pair's two sides: the collision body's, then the other's.
+  std::pair<std::string, std::string> pairSides(const ContactPair& pair) const;
+  /// The length a pair's margins are relative to: the sum of its radii (a wall: the body's).
+  double pairSize(const ContactPair& pair) const;
+  /// The constraint value of one pair at a state (> 0: apart).
+  double constraintValue(const ContactPair& pair, const Eigen::VectorXd& x) const;
+  /// The signed gap between the pair's surfaces at x (negative: overlap).
+  double pairGap(const ContactPair& pair, const Eigen::VectorXd& x) const;
+  /// pairGap of each pair at x, with one forward kinematics for all.
+  std::vector<double> pairGaps(const std::vector<ContactPair>& pairs,
+                               const Eigen::VectorXd& x) const;
+
+  /// The DCS with the given pairs as its constraints, in that order.
+  std::shared_ptr<const DcsModel> model(const std::vector<ContactPair>& pairs) const;
+
+ private:
+  CentrePair centrePair(const std::vector<CollisionBody>& bodies, const ContactPair& pair) const;
+  bool linksMayCollide(int sphere_a, int sphere_b) const;
+  int freeCollisionBodies() const;
+
+  int dimension_;
+  std::vector<SceneBody> bodies_;
+  std::vector<SceneObstacle> obstacles_;
+  std::vector<SceneWall> walls_;
+  std::shared_ptr<const KinematicModel> robot_;
+  Eigen::VectorXd q0_;
+};
+
+/// `scene` with a robot at joints q0 in it (Scene::setRobot).
+Scene robotInScene(std::shared_ptr<const KinematicModel> robot, Eigen::VectorXd q0, Scene scene);
+
+}  // namespace fesd

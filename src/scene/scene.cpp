@@ -1,0 +1,277 @@
+#include "fesd_trajopt/scene/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace fesd {
+namespace {
+
+Eigen::Vector3d padded(const Eigen::VectorXd& v) {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  p.head(v.size()) = v;
+  return p;
+}
+
+}  // namespace
+
+bool namesSide(const std::string& name, const std::string& side) {
+  return side == name || side.rfind(name + "/sphere_", 0) == 0;
+}
+
+void Scene::setRobot(std::shared_ptr<const KinematicModel> robot, Eigen::VectorXd q0) {
+  if (!robot || q0.size() != robot->numCoordinates()) {
+    throw std::invalid_argument("Scene: a robot needs one initial value per coordinate");
+  }
+  robot_ = std::move(robot);
+  q0_ = std::move(q0);
+}
+
+Scene robotInScene(std::shared_ptr<const KinematicModel> robot, Eigen::VectorXd q0, Scene scene) {
+  scene.setRobot(std::move(robot), std::move(q0));
+  return scene;
+}
+
+int Scene::controlSize() const {
+  int actuated = 0;
+  for (const SceneBody& body : bodies_) actuated += body.actuated;
+  return numJoints() + dimension_ * actuated;
+}
+
+int Scene::controlIndex(int body) const {
+  if (!bodies_.at(body).actuated) return -1;
+  int actuated_before = 0;
+  for (int b = 0; b < body; ++b) actuated_before += bodies_[b].actuated;
+  return numJoints() + dimension_ * actuated_before;
+}
+
+Eigen::VectorXd Scene::initialState() const {
+  Eigen::VectorXd x(stateSize());
+  x.head(numJoints()) = q0_;
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    x.segment(stateIndex(static_cast<int>(b)), dimension_) = bodies_[b].position;
+  }
+  return x;
+}
+
+std::vector<CollisionBody> Scene::collisionBodies() const {
+  std::vector<CollisionBody> result;
+  for (int b = 0; b < static_cast<int>(bodies_.size()); ++b) {
+    const SceneBody& body = bodies_[b];
+    const CollisionCentre centre{CollisionCentre::Source::kFreeBody, stateIndex(b)};
+    if (body.spheres.empty()) result.push_back({body.name, body.radius, centre, -1, b});
+    for (const FreeBodySphere& sphere : body.spheres) {
+      CollisionCentre moved = centre;
+      moved.offset = sphere.offset;
+      result.push_back({sphere.name, sphere.radius, moved, -1, b});
+    }
+  }
+  for (int s = 0; robot_ && s < static_cast<int>(robot_->spheres.size()); ++s) {
+    const KinematicSphere& sphere = robot_->spheres[s];
+    result.push_back({sphere.name, sphere.radius, {CollisionCentre::Source::kRobotSphere, s}, s});
+  }
+  return result;
+}
+
+int Scene::freeCollisionBodies() const {
+  int count = 0;
+  for (const SceneBody& body : bodies_) count += std::max<int>(1, body.spheres.size());
+  return count;
+}
+
+int Scene::sphereBody(int sphere) const {
+  return freeCollisionBodies() + sphere;
+}
+
+std::vector<int> Scene::freeBodyCollisionBodies(int body) const {
+  std::vector<int> found;
+  int first = 0;
+  for (int b = 0; b < body; ++b) first += std::max<int>(1, bodies_[b].spheres.size());
+  for (int k = 0; k < std::max<int>(1, bodies_.at(body).spheres.size()); ++k) {
+    found.push_back(first + k);
+  }
+  return found;
+}
+
+bool Scene::linksMayCollide(int sphere_a, int sphere_b) const {
+  const KinematicLink& a = robot_->links[robot_->spheres[sphere_a].link];
+  const KinematicLink& b = robot_->links[robot_->spheres[sphere_b].link];
+  if (a.joint == b.joint) return false;  // one rigid body: they never move apart
+  const auto parent = [&](int joint) { return joint < 0 ? -2 : robot_->joints[joint].parent; };
+  if (parent(a.joint) == b.joint || parent(b.joint) == a.joint) return false;  // adjacent
+  for (const auto& [first, second] : disabled_link_pairs) {
+    if ((first == a.name && second == b.name) || (first == b.name && second == a.name)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::vector<ContactPair> Scene::allPairs() const {
+  std::vector<ContactPair> pairs;
+  const std::vector<CollisionBody> bodies = collisionBodies();
+  const int all = static_cast<int>(bodies.size());
+  const int obstacles = static_cast<int>(obstacles_.size());
+  const int walls = static_cast<int>(walls_.size());
+  const Eigen::VectorXd x0 = initialState();
+  for (int i = 0; i < all; ++i) {
+    const int sphere = bodies[i].sphere;
+    // A sphere fixed to the world (e.g. a base plate) is an obstacle to the free bodies only.
+    const bool moves = sphere < 0 || robot_->links[robot_->spheres[sphere].link].joint >= 0;
+    for (int j = i + 1; j < all; ++j) {
+      const int other = bodies[j].sphere;
+      if (other < 0 && bodies[j].free_body == bodies[i].free_body) continue;
+      const ContactPair pair{i, ContactPair::Kind::kBody, j};
+      if (other >= 0 && sphere >= 0) {
+        if (!self_collision || !linksMayCollide(sphere, other)) continue;
+        if (pairGap(pair, x0) < 0.0) continue;  // overlapping at the start: meant to
+      }
+      pairs.push_back(pair);
+    }
+    if (!moves) continue;
+    for (int o = 0; o < obstacles; ++o) pairs.push_back({i, ContactPair::Kind::kObstacle, o});
+    for (int w = 0; w < walls; ++w) pairs.push_back({i, ContactPair::Kind::kWall, w});
+  }
+  return pairs;
+}
+
+std::string Scene::pairName(const ContactPair& pair) const {
+  const auto [body, other] = pairSides(pair);
+  return body + "/" + other;
+}
+
+std::pair<std::string, std::string> Scene::pairSides(const ContactPair& pair) const {
+  const std::vector<CollisionBody> bodies = collisionBodies();
+  const std::string& body = bodies.at(pair.body).name;
+  switch (pair.kind) {
+    case ContactPair::Kind::kBody:
+      return {body, bodies.at(pair.other).name};
+    case ContactPair::Kind::kObstacle:
+      return {body, obstacles_.at(pair.other).name};
+    case ContactPair::Kind::kWall:
+      return {body, walls_.at(pair.other).name};
+  }
+  return {body, ""};
+}
+
+double Scene::pairSize(const ContactPair& pair) const {
+  const std::vector<CollisionBody> bodies = collisionBodies();
+  const double radius = bodies.at(pair.body).radius;
+  switch (pair.kind) {
+    case ContactPair::Kind::kBody:
+      return radius + bodies.at(pair.other).radius;
+    case ContactPair::Kind::kObstacle:
+      return radius + obstacles_.at(pair.other).radius;
+    case ContactPair::Kind::kWall:
+      return radius;
+  }
+  return radius;
+}
+
+CentrePair Scene::centrePair(const std::vector<CollisionBody>& bodies,
+                             const ContactPair& pair) const {
+  const CollisionBody& a = bodies.at(pair.body);
+  CentrePair result;
+  result.a = a.centre;
+  switch (pair.kind) {
+    case ContactPair::Kind::kBody: {
+      const CollisionBody& b = bodies.at(pair.other);
+      result.kind = CentrePair::Kind::kCentre;
+      result.b = b.centre;
+      result.constant = (a.radius + b.radius) * (a.radius + b.radius);
+      break;
+    }
+    case ContactPair::Kind::kObstacle: {
+      const SceneObstacle& o = obstacles_.at(pair.other);
+      result.kind = CentrePair::Kind::kPoint;
+      result.point = padded(o.position);
+      result.constant = (a.radius + o.radius) * (a.radius + o.radius);
+      break;
+    }
+    case ContactPair::Kind::kWall: {
+      const SceneWall& w = walls_.at(pair.other);
+      result.kind = CentrePair::Kind::kWall;
+      result.point = padded(w.normal);
+      result.constant = w.offset + a.radius;
+      break;
+    }
+  }
+  return result;
+}
+
+double Scene::constraintValue(const ContactPair& pair, const Eigen::VectorXd& x) const {
+  CentreEvaluator evaluator(robot_, dimension_);
+  evaluator.setState(x.data());
+  return centrePairValue(evaluator, centrePair(collisionBodies(), pair));
+}
+
+double Scene::pairGap(const ContactPair& pair, const Eigen::VectorXd& x) const {
+  return pairGaps({pair}, x)[0];
+}
+
+std::vector<double> Scene::pairGaps(const std::vector<ContactPair>& pairs,
+                                    const Eigen::VectorXd& x) const {
+  const std::vector<CollisionBody> bodies = collisionBodies();
+  CentreEvaluator evaluator(robot_, dimension_);
+  evaluator.setState(x.data());  // one forward kinematics for all pairs
+  std::vector<double> gaps;
+  gaps.reserve(pairs.size());
+  for (const ContactPair& pair : pairs) {
+    const CollisionBody& body = bodies.at(pair.body);
+    const Eigen::Vector3d p = evaluator.position(body.centre);
+    switch (pair.kind) {
+      case ContactPair::Kind::kBody: {
+        const CollisionBody& other = bodies.at(pair.other);
+        gaps.push_back((p - evaluator.position(other.centre)).norm() -
+                       (body.radius + other.radius));
+        break;
+      }
+      case ContactPair::Kind::kObstacle: {
+        const SceneObstacle& o = obstacles_.at(pair.other);
+        gaps.push_back((p - padded(o.position)).norm() - (body.radius + o.radius));
+        break;
+      }
+      case ContactPair::Kind::kWall: {
+        const SceneWall& w = walls_.at(pair.other);
+        gaps.push_back(padded(w.normal).dot(p) - w.offset - body.radius);
+        break;
+      }
+    }
+  }
+  return gaps;
+}
+
+std::shared_ptr<const DcsModel> Scene::model(const std::vector<ContactPair>& pairs) const {
+  if (dimension_ != 2 && dimension_ != 3) {
+    throw std::invalid_argument("Scene: dimension must be 2 or 3");
+  }
+  for (const SceneBody& body : bodies_) {
+    if (body.position.size() != dimension_) {
+      throw std::invalid_argument("Scene: body '" + body.name + "' has the wrong dimension");
+    }
+  }
+  CentrePairSystem system;
+  system.robot = robot_;
+  system.dimension = dimension_;
+  system.state_size = stateSize();
+  system.control_size = controlSize();
+  for (int j = 0; j < numJoints(); ++j) system.actuation.emplace_back(j, j);
+  for (int b = 0; b < static_cast<int>(bodies_.size()); ++b) {
+    if (!bodies_[b].actuated) continue;
+    for (int d = 0; d < dimension_; ++d) {
+      system.actuation.emplace_back(stateIndex(b) + d, controlIndex(b) + d);
+    }
+  }
+  const std::vector<CollisionBody> bodies = collisionBodies();
+  system.constraint_scales.resize(pairs.size());
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    system.pairs.push_back(centrePair(bodies, pairs[k]));
+    // |grad_p c| on the boundary; for a robot sphere in q it is that times the lever arm, which
+    // depends on the configuration.
+    system.constraint_scales(k) =
+        pairs[k].kind == ContactPair::Kind::kWall ? 1.0 : 2.0 * pairSize(pairs[k]);
+  }
+  return centrePairModel(system, "scene");
+}
+
+}  // namespace fesd
