@@ -174,6 +174,17 @@ void replay(const std::string& scene, const std::vector<fesd::KktCapture::Matrix
   }
 }
 
+/// The task solved as solveSceneTask solves it under `linear_solver` and the budget, timed.
+SolveFigures timedSolve(const fesd::SceneTask& task, fesd::SceneSolveOptions options,
+                        const std::string& linear_solver, double budget) {
+  options.ocp.homotopy.wall_time_budget = budget;
+  options.ocp.homotopy.ipopt.linear_solver = linear_solver;
+  fesd::Stopwatch clock;
+  const fesd::SceneOutcome outcome = fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
+  return SolveFigures{fesd::statusName(outcome.status), outcome.report.iterations,
+                      outcome.report.objective, clock.wallSeconds()};
+}
+
 /// The scene's solve under `linear_solver`, as a function the bench can time.
 std::function<SolveFigures(const std::string&)> sceneSolve(const std::string& scene, int intervals,
                                                            double budget) {
@@ -182,14 +193,8 @@ std::function<SolveFigures(const std::string&)> sceneSolve(const std::string& sc
       const fesd::SceneTask task = fesd::pandaPushTask(shippedRobot("panda_spherized.urdf"));
       fesd::SceneSolveOptions options;
       options.lazy_pairs = false;
-      options.resume_relaxation = false;
       options.verify = true;
-      options.ocp.homotopy.wall_time_budget = budget;
-      options.ocp.homotopy.ipopt.linear_solver = linear_solver;
-      fesd::Stopwatch clock;
-      const fesd::SceneOutcome outcome = fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
-      return SolveFigures{fesd::statusName(outcome.status), outcome.report.iterations,
-                          outcome.report.objective, clock.wallSeconds()};
+      return timedSolve(task, options, linear_solver, budget);
     };
   }
   const int rocks = scene == "default" ? 0 : 7;
@@ -201,12 +206,7 @@ std::function<SolveFigures(const std::string&)> sceneSolve(const std::string& sc
     const fesd::SceneTask task = showcaseWithRocks(intervals, rocks);
     fesd::SceneSolveOptions options;
     options.lazy_pairs = !all_pairs;
-    options.ocp.homotopy.wall_time_budget = budget;
-    options.ocp.homotopy.ipopt.linear_solver = linear_solver;
-    fesd::Stopwatch clock;
-    const fesd::SceneOutcome outcome = fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
-    return SolveFigures{fesd::statusName(outcome.status), outcome.report.iterations,
-                        outcome.report.objective, clock.wallSeconds()};
+    return timedSolve(task, options, linear_solver, budget);
   };
 }
 

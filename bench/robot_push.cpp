@@ -37,7 +37,6 @@ int robotPush(const Arguments& args) {
   options.ocp.homotopy.wall_time_budget = args.number("budget", 150.0);
   const std::string pairs = args.text("pairs", "lazy");
   options.lazy_pairs = pairs == "lazy";
-  options.resume_relaxation = false;
   options.pair_margin = args.number("margin", options.pair_margin);
   options.verify = args.flag("verify", true);
   applyHomotopyArguments(args, options.ocp.homotopy);

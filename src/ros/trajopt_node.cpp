@@ -266,7 +266,6 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
   options.lazy_pairs = by_default ? config_.lazy_pairs
                                   : request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_LAZY;
   options.all_pairs_up_to = robot && by_default ? config_.robot_all_pairs_up_to : 0;
-  options.resume_relaxation = !robot;  // see SceneSolveOptions::resume_relaxation
   options.pair_margin = config_.contact_margin;
   options.verify = request.verify;
   options.verification.num_stages = config_.verification_stages;

@@ -184,18 +184,48 @@ class PairSet {
   LocalPair local(int k) const { return LocalPair(evaluator_, system_.pairs[k], layouts_[k]); }
   double value(int k) const { return centrePairValue(evaluator_, system_.pairs[k]); }
 
-  /// Pair k's gradient at its gradient_entries. A translating pair's without a LocalPair: no
+  /// Pair k's gradient at its gradient_entries and its Hessian at its hessian_entries (either
+  /// may be null). A curved pair's from one LocalPair; a translating pair's without one: no
   /// allocation in the evaluations' inner loop (a scene of discs has only such pairs).
-  void gradient(int k, double* values) const {
+  void derivatives(int k, double* gradient, double* hessian) const {
     const PairLayout& layout = layouts_[k];
-    const CentrePair& pair = system_.pairs[k];
     if (layout.curved) {
-      const Eigen::VectorXd g = local(k).gradient();
-      for (size_t e = 0; e < layout.gradient_entries.size(); ++e) {
-        values[e] = g(layout.gradient_entries[e]);
+      const LocalPair local = this->local(k);
+      if (gradient) {
+        const Eigen::VectorXd g = local.gradient();
+        for (size_t e = 0; e < layout.gradient_entries.size(); ++e) {
+          gradient[e] = g(layout.gradient_entries[e]);
+        }
+      }
+      if (hessian) {
+        const Eigen::MatrixXd h = local.hessian();
+        for (size_t e = 0; e < layout.hessian_entries.size(); ++e) {
+          hessian[e] = h(layout.hessian_entries[e].first, layout.hessian_entries[e].second);
+        }
       }
       return;
     }
+    if (hessian) {
+      std::copy(layout.hessian_constants.begin(), layout.hessian_constants.end(), hessian);
+    }
+    if (gradient) translatingGradient(k, gradient);
+  }
+
+  /// The most gradient or Hessian entries of a pair: the size of the buffers above.
+  size_t maxEntries() const {
+    size_t most = 0;
+    for (const PairLayout& layout : layouts_) {
+      most = std::max({most, layout.gradient_entries.size(), layout.hessian_entries.size()});
+    }
+    return most;
+  }
+
+ private:
+  /// A translating pair's gradient: 2 (p_a - p_b) on a's coordinates, its negative on b's; a
+  /// wall's normal on the coordinates it has.
+  void translatingGradient(int k, double* values) const {
+    const PairLayout& layout = layouts_[k];
+    const CentrePair& pair = system_.pairs[k];
     int e = 0;
     if (pair.kind == CentrePair::Kind::kWall) {
       for (size_t d = 0; d < layout.a_slots.size(); ++d) {
@@ -209,29 +239,6 @@ class PairSet {
     for (size_t d = 0; d < layout.b_slots.size(); ++d) values[e++] = -2.0 * difference(d);
   }
 
-  /// Pair k's Hessian at its hessian_entries.
-  void hessian(int k, double* values) const {
-    const PairLayout& layout = layouts_[k];
-    if (!layout.curved) {
-      std::copy(layout.hessian_constants.begin(), layout.hessian_constants.end(), values);
-      return;
-    }
-    const Eigen::MatrixXd h = local(k).hessian();
-    for (size_t e = 0; e < layout.hessian_entries.size(); ++e) {
-      values[e] = h(layout.hessian_entries[e].first, layout.hessian_entries[e].second);
-    }
-  }
-
-  /// The most gradient or Hessian entries of a pair: the size of the buffers above.
-  size_t maxEntries() const {
-    size_t most = 0;
-    for (const PairLayout& layout : layouts_) {
-      most = std::max({most, layout.gradient_entries.size(), layout.hessian_entries.size()});
-    }
-    return most;
-  }
-
- private:
   CentrePairSystem system_;
   mutable CentreEvaluator evaluator_;
   std::vector<PairLayout> layouts_;
@@ -268,7 +275,7 @@ class CentreConstraints : public SmoothFunction {
     pairs_->setState(x);
     int e = 0;
     for (int k = 0; k < outputSize(); ++k) {
-      pairs_->gradient(k, values + e);
+      pairs_->derivatives(k, values + e, nullptr);
       e += static_cast<int>(pairs_->layout(k).gradient_entries.size());
     }
   }
@@ -278,7 +285,7 @@ class CentreConstraints : public SmoothFunction {
     pairs_->setState(x);
     for (int k = 0; k < outputSize(); ++k) {
       if (weights[k] == 0.0) continue;
-      pairs_->hessian(k, scratch_.data());
+      pairs_->derivatives(k, nullptr, scratch_.data());
       for (const HessianSlot& e : hessian_slots_[k]) {
         values[e.slot] += weights[k] * scratch_[e.entry];
       }
@@ -344,7 +351,7 @@ class CentreVelocity : public SmoothFunction {
       const double lambda = z[nx_ + nu_ + k];
       if (lambda == 0.0) continue;
       const PairLayout& layout = pairs_->layout(k);
-      pairs_->gradient(k, gradient_.data());
+      pairs_->derivatives(k, gradient_.data(), nullptr);
       for (size_t e = 0; e < layout.gradient_entries.size(); ++e) {
         v[layout.variables[layout.gradient_entries[e]]] += lambda * gradient_[e];
       }
@@ -359,8 +366,7 @@ class CentreVelocity : public SmoothFunction {
     for (int k = 0; k < pairs_->size(); ++k) {
       const double lambda = z[nx_ + nu_ + k];
       const PairLayout& layout = pairs_->layout(k);
-      pairs_->gradient(k, gradient_.data());
-      pairs_->hessian(k, hessian_values_.data());
+      pairs_->derivatives(k, gradient_.data(), hessian_values_.data());
       for (size_t e = 0; e < layout.hessian_entries.size(); ++e) {
         values[slots_[k].curvature[e]] += lambda * hessian_values_[e];
       }

@@ -42,17 +42,17 @@ std::string boundsProblem(const Eigen::VectorXd& lower, const Eigen::VectorXd& u
   return "";
 }
 
-/// Per coordinate: where a free collision body's centre can be during the task (start +- reach,
-/// within its workspace).
+/// Per coordinate: where a point fixed to a free body (its position plus `offset`: a sphere's
+/// centre, or the position itself) can be during the task (start +- reach, within the workspace).
 struct Box {
   Eigen::VectorXd low, high;
 };
 
-Box reachableBox(const SceneTask& task, const CollisionBody& body, double reach) {
-  const int dim = task.scene.dimension();
-  const Eigen::VectorXd offset = body.centre.offset.head(dim);
-  const Eigen::VectorXd centre = task.scene.bodies()[body.free_body].position + offset;
-  const BodyTask& t = task.bodies[body.free_body];
+Box reachableBox(const SceneTask& task, int free_body, const Eigen::Vector3d& offset3,
+                 double reach) {
+  const Eigen::VectorXd offset = offset3.head(task.scene.dimension());
+  const Eigen::VectorXd centre = task.scene.bodies()[free_body].position + offset;
+  const BodyTask& t = task.bodies[free_body];
   Box box{centre.array() - reach, centre.array() + reach};
   if (t.workspace_lower.size()) box.low = box.low.cwiseMax(t.workspace_lower + offset);
   if (t.workspace_upper.size()) box.high = box.high.cwiseMin(t.workspace_upper + offset);
@@ -85,11 +85,12 @@ double separationBound(const SceneTask& task, const std::vector<CollisionBody>& 
     const double other = pair.kind == ContactPair::Kind::kBody ? reach[pair.other] : 0.0;
     return scene.pairGap(pair, scene.initialState()) - reach[pair.body] - other;
   }
-  const Box box = reachableBox(task, a, reach[pair.body]);
+  const Box box = reachableBox(task, a.free_body, a.centre.offset, reach[pair.body]);
   switch (pair.kind) {
     case ContactPair::Kind::kBody: {
       const CollisionBody& b = bodies[pair.other];
-      return boxDistance(box, reachableBox(task, b, reach[pair.other])) - a.radius - b.radius;
+      return boxDistance(box, reachableBox(task, b.free_body, b.centre.offset, reach[pair.other])) -
+             a.radius - b.radius;
     }
     case ContactPair::Kind::kObstacle: {
       const SceneObstacle& o = scene.obstacles()[pair.other];
@@ -349,7 +350,6 @@ std::vector<double> collisionReach(const SceneTask& task) {
 
 std::string infeasibility(const SceneTask& task) {
   const std::vector<double> reach = collisionReach(task);
-  const std::vector<CollisionBody> bodies = task.scene.collisionBodies();
   for (size_t b = 0; b < task.bodies.size(); ++b) {
     const BodyTask& t = task.bodies[b];
     if (t.target.size() == 0 || t.target_weight == 0.0) continue;
@@ -358,11 +358,9 @@ std::string infeasibility(const SceneTask& task) {
         (t.workspace_upper.size() && (t.target.array() > t.workspace_upper.array()).any())) {
       return who + " has its target outside its workspace bounds";
     }
-    // The body's position moves as its first collision body's centre does.
+    // All of a body's collision bodies share its reach.
     const int first = task.scene.freeBodyCollisionBodies(static_cast<int>(b))[0];
-    CollisionBody position = bodies[first];
-    position.centre.offset.setZero();
-    const Box box = reachableBox(task, position, reach[first]);
+    const Box box = reachableBox(task, static_cast<int>(b), Eigen::Vector3d::Zero(), reach[first]);
     const double miss = boxDistance(box, Box{t.target, t.target});
     if (miss > 0.0) {
       return who + " cannot reach its target within the horizon: it stays at least " +

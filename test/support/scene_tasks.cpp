@@ -43,7 +43,6 @@ fesd::SceneTask pushAlongX() {
 fesd::SceneSolveOptions robotSolveOptions() {
   fesd::SceneSolveOptions options;
   options.lazy_pairs = false;
-  options.resume_relaxation = false;
   options.verify = true;
   return options;
 }

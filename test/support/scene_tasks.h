@@ -21,8 +21,7 @@ fesd::SceneTask slowPushingTask();
 /// (3, 0) (weight 100) in T = 2 on 20 intervals.
 fesd::SceneTask pushAlongX();
 
-/// What the node asks of a robot solve: every pair in reach modelled, each lazy round started
-/// over, the plan verified.
+/// What the node asks of a robot solve: every pair in reach modelled, the plan verified.
 fesd::SceneSolveOptions robotSolveOptions();
 
 }  // namespace fesd_test

@@ -81,11 +81,6 @@ struct SceneSolveOptions {
   /// pairs are cheap, and lazy rounds can end in other local optima: on the arm push 2 of 9 pairs
   /// in a local optimum its re-simulation missed by 6e-2, against 3e-5 with all pairs).
   int all_pairs_up_to = 0;
-  /// A later lazy round resumes the homotopy at the tightest relaxation the round before reached
-  /// (its solution is nearly this round's) instead of starting at guess_sigma. Same optima on the
-  /// planning sweep, in less time; on the arm push (robot-push --robot=planar_arm) it ends in
-  /// another local optimum (objective 2.0e-4 against 1.4e-4), so robot solves start over.
-  bool resume_relaxation = true;
   double pair_margin = 0.1;  ///< lazy pairs' margin, relative to the pair's size (pairSize)
   /// Re-simulate the optimal controls finely with every pair in reach modelled and report the
   /// end state's deviation.
