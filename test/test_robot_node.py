@@ -12,8 +12,8 @@ import actionlib
 import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
-from fesd_trajopt.msg import (BodySpec, ContactPair, JointSpec, PlanRequest, PlanTrajectoryAction,
-                              PlanTrajectoryGoal, Solution, Wall)
+from fesd_trajopt.msg import (BodySpec, BodyTrajectory, ContactPair, JointSpec, PlanRequest,
+                              PlanTrajectoryAction, PlanTrajectoryGoal, Solution, Wall)
 from fesd_trajopt.srv import Simulate, SimulateRequest, SolveTrajectory
 from geometry_msgs.msg import Point, Vector3
 from sensor_msgs.msg import JointState
@@ -371,6 +371,37 @@ class RobotNodeTest(unittest.TestCase):
         response = self.simulate(request)
         self.assertEqual(response.status, Solution.INVALID_REQUEST)
         self.assertIn("'knee'", response.message)
+
+    def test_commands_name_what_the_scene_has_or_are_refused(self):
+        # One request path for discs and robots: body commands in a robot scene are read as in a
+        # scene of discs, joint commands without a robot are refused, and the node keeps serving.
+        request = SimulateRequest()
+        request.urdf_param = ARM
+        request.has_horizon, request.horizon = True, 1.0
+        request.has_num_steps, request.num_steps = True, 4
+        request.bodies = [BodySpec(name="pusher", add=True, radius=0.05, role=BodySpec.ROLE_ACTUATED,
+                                   initial_position=Point(x=0.0, y=-0.8), max_speed=1.0)]
+        request.commands = [BodyTrajectory(name="pusher", controls=[Vector3(x=0.3)])]
+        response = self.simulate(request)
+        self.assertEqual(response.status, Solution.SUCCESS, response.message)
+        self.assertAlmostEqual(response.solution.bodies[0].positions[-1].x, 0.3, delta=1e-9)
+        for name in ["hand/sphere_0", "hand", "no_such_body"]:
+            request.commands = [BodyTrajectory(name=name, controls=[Vector3(x=0.3)])]
+            response = self.simulate(request)
+            self.assertEqual(response.status, Solution.INVALID_REQUEST, name)
+            self.assertIn("not an actuated body", response.message)
+        request.commands = [BodyTrajectory(name="pusher", controls=[Vector3(x=float("nan"))])]
+        response = self.simulate(request)
+        self.assertEqual(response.status, Solution.INVALID_REQUEST)
+        self.assertIn("not finite", response.message)
+        discs = SimulateRequest()
+        discs.joint_commands.joint_names = ["elbow"]
+        discs.joint_commands.points = [JointTrajectoryPoint(velocities=[0.7])]
+        response = self.simulate(discs)
+        self.assertEqual(response.status, Solution.INVALID_REQUEST)
+        self.assertIn("joint_commands are given, but the scene has no robot", response.message)
+        request.commands = []
+        self.assertEqual(self.simulate(request).status, Solution.SUCCESS)
 
 
 if __name__ == "__main__":
