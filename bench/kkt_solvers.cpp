@@ -19,7 +19,7 @@
 #include "fesd_trajopt/examples/robot_scenes.h"
 #include "fesd_trajopt/linalg/kkt_ordering.h"
 #include "fesd_trajopt/linalg/multifrontal_ldlt.h"
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 #include "fesd_trajopt/solver/kkt_capture.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 

@@ -59,8 +59,8 @@ int planningSweep(const Arguments& args) {
   std::printf(
       "family,seed,bodies,obstacles,reachable,pairs,status,wall_s,ipopt_iterations,objective,"
       "homotopy_steps,step_iterations,pairs_in_reach,modelled,checked,rounds,target_distance,plan_"
-      "gap,"
-      "verification_status,verification_error,verification_gap,verification_s,description\n");
+      "gap,guess_residual,verification_status,verification_error,verification_gap,verification_s,"
+      "description\n");
   std::vector<double> walls;
   int count = 0, failed = 0, missed = 0, penetrating = 0;
   for (const std::string& family : families) {
@@ -75,16 +75,17 @@ int planningSweep(const Arguments& args) {
       penetrating += run.plan_gap < -1e-6 || run.verification_gap < -1e-6;
       walls.push_back(run.wall_seconds);
       std::printf(
-          "%s,%u,%zu,%zu,%d,%s,%s,%.3f,%d,%.10g,%zu,%s,%d,%d,%d,%d,%.3g,%.3g,%s,%.3g,%.3g,%.3f,%"
-          "s\n",
+          "%s,%u,%zu,%zu,%d,%s,%s,%.3f,%d,%.10g,%zu,%s,%d,%d,%d,%d,%.3g,%.3g,%.3g,%s,%.3g,%.3g,%."
+          "3f,%s\n",
           family.c_str(), scene.seed, scene.task.scene.bodies().size(),
           scene.task.scene.obstacles().size(), scene.reachable, pairs.c_str(),
           outcome.solved() ? fesd::statusName(outcome.status).c_str() : "refused", run.wall_seconds,
           outcome.report.iterations, outcome.report.objective, outcome.report.history.size(),
           stepIterations(outcome.report).c_str(), outcome.modelledPairs() + outcome.checkedPairs(),
           outcome.modelledPairs(), outcome.checkedPairs(), outcome.pair_rounds, run.target_distance,
-          run.plan_gap, fesd::statusName(run.verification.status).c_str(), run.verification.error,
-          run.verification_gap, run.verification_seconds, scene.description.c_str());
+          run.plan_gap, outcome.guess_residual, fesd::statusName(run.verification.status).c_str(),
+          run.verification.error, run.verification_gap, run.verification_seconds,
+          scene.description.c_str());
       if (!ok)
         std::fprintf(stderr, "# %s %u: %s\n", family.c_str(), scene.seed, outcome.message.c_str());
       std::fflush(stdout);

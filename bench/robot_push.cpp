@@ -15,7 +15,7 @@
 #include "commands.h"
 #include "fesd_trajopt/examples/robot_scenes.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 #include "showcase_reference.h"
 
@@ -81,6 +81,7 @@ int robotPush(const Arguments& args) {
       outcome.report.ipopt_seconds, outcome.report.evaluation_seconds, outcome.report.objective);
   std::printf("  last NLP: %d variables, %d constraints, %d complementarities\n",
               nlp.numVariables(), nlp.numConstraints(), nlp.numComplementarities());
+  std::printf("  first guess: residual %.3g in the NLP's equations\n", outcome.guess_residual);
   std::printf("  pairs: %zu in reach, %zu modelled, %d checked, %d rounds; pusher %s\n",
               in_reach.size(), outcome.modelled.size(), checked, outcome.pair_rounds,
               outcome.pusher_sphere >= 0 ? scene.robot().spheres[outcome.pusher_sphere].name.c_str()

@@ -6,7 +6,7 @@
 
 #include "commands.h"
 #include "fesd_trajopt/examples/manipulation_example.h"
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 
 namespace fesd_bench {
 namespace {

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 
 namespace fesd_bench {
 

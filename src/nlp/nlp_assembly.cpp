@@ -532,4 +532,14 @@ double NlpAssembly::complementarityResidual(const double* x) const {
   return residual;
 }
 
+double NlpAssembly::equalityResidual(const double* x) const {
+  std::vector<double> g(numConstraints());
+  constraints(x, g.data());
+  double residual = 0.0;
+  for (int i = 0; i < numConstraints(); ++i) {
+    if (g_lower_[i] == g_upper_[i]) residual = std::max(residual, std::fabs(g[i] - g_lower_[i]));
+  }
+  return residual;
+}
+
 }  // namespace fesd

@@ -5,7 +5,7 @@
 #include <fesd_trajopt/Solution.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 #include "fesd_trajopt/scene/scene_task.h"
 
 namespace fesd_ros {

@@ -5,7 +5,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "fesd_trajopt/discretization/trajectory.h"
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 #include "fesd_trajopt/scene/scene_task.h"
 #include "fesd_trajopt/solver/mpcc_solver.h"
 

@@ -12,7 +12,7 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 
 #include "fesd_trajopt/integrator/fesd_integrator.h"
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 #include "fesd_trajopt/scene/scene_task.h"
 #include "node_config.h"
 #include "plan_action.h"

@@ -12,7 +12,7 @@
 #include <unistd.h>
 
 #include "fesd_trajopt/examples/manipulation_example.h"
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 #include "support/hard_cases.h"
 
 namespace {

@@ -7,7 +7,7 @@
 
 #include "fesd_trajopt/examples/planning_scenes.h"
 #include "fesd_trajopt/scene/pair_check.h"
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 #include "support/scene_tasks.h"
 
 namespace {

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "fesd_trajopt/examples/manipulation_example.h"
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 
 namespace {
 

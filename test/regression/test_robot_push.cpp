@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "fesd_trajopt/examples/robot_scenes.h"
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 #include "support/robot_files.h"
 #include "support/scene_tasks.h"

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 #include "fesd_trajopt/scene/scene_task.h"
 
 /// Small pushing tasks shared by the scene tests.

@@ -1,4 +1,4 @@
-// The accuracy ladder's rungs and bookkeeping (scene/accuracy_ladder.cpp), on scripted rungs.
+// The accuracy ladder's rungs and bookkeeping (planning/accuracy_ladder.cpp), on scripted rungs.
 #include <gtest/gtest.h>
 
 #include <limits>
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "fesd_trajopt/ocp/ocp_solver.h"
-#include "fesd_trajopt/scene/accuracy_ladder.h"
+#include "fesd_trajopt/planning/accuracy_ladder.h"
 
 namespace {
 

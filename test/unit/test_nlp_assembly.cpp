@@ -119,3 +119,19 @@ TEST(PolishingBiactivePairs, BothSidesFarBelowTheRelaxationStayFree) {
 }
 
 }  // namespace
+
+/// Rows x + y = 3 (equality), x - y in [0, 1] (inequality): only the equality's residual counts.
+TEST(NlpAssembly, EqualityResidualMeasuresOnlyTheEqualityRows) {
+  fesd::NlpAssembly nlp;
+  const int x = nlp.addVariables(1, -kInf, kInf);
+  const int y = nlp.addVariables(1, -kInf, kInf);
+  const int sum = nlp.addRows(1, 3.0, 3.0);
+  nlp.addLinear(sum, {{x, 1.0}, {y, 1.0}});
+  const int difference = nlp.addRows(1, 0.0, 1.0);
+  nlp.addLinear(difference, {{x, 1.0}, {y, -1.0}});
+  nlp.finalize();
+  const double feasible[] = {2.0, 1.0}, off[] = {5.0, -0.5}, below[] = {1.0, 1.5};
+  EXPECT_DOUBLE_EQ(nlp.equalityResidual(feasible), 0.0);
+  EXPECT_DOUBLE_EQ(nlp.equalityResidual(off), 1.5);    // x - y = 5.5 violates only the range
+  EXPECT_DOUBLE_EQ(nlp.equalityResidual(below), 0.5);  // 2.5 against 3
+}

@@ -1,14 +1,17 @@
 // The push plan (planPushes), the first guess of scene OCPs: pushing poses, phase times, a
-// guess whose states, forces and controls are consistent with the scene's dynamics, and what
-// it does with bodies in the way (shoves them as a chain) and obstacles (goes around).
+// guess whose states, forces and controls are consistent with the scene's dynamics (its
+// residual in the OCP's equations), legs round a post with the pusher turning round the puck, a
+// pusher that must go round the puck first, a push along a wall, and what it does with bodies in
+// the way (shoves them as a chain).
 #include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
 
 #include "fesd_trajopt/examples/manipulation_example.h"
+#include "fesd_trajopt/ocp/ocp_solver.h"
+#include "fesd_trajopt/planning/push_plan.h"
 #include "fesd_trajopt/scene/pair_check.h"
-#include "fesd_trajopt/scene/push_plan.h"
 #include "support/scene_tasks.h"
 
 namespace {
@@ -157,21 +160,101 @@ TEST(PushPlan, ABodyInThePushedBodysWayIsShovedAlongAsTheProjectionWould) {
   EXPECT_LT((velocity - force).norm(), 0.05 * velocity.norm());
 }
 
-TEST(PushPlan, ThePushedBodyGoesAroundAnObstacleInItsWay) {
+/// The largest residual of the OCP's equations (dynamics, algebraic) at the plan's guess.
+double guessResidual(const fesd::SceneTask& task, const std::vector<fesd::ContactPair>& pairs,
+                     const fesd::PushPlan& plan) {
+  fesd::OcpOptions options;
+  options.discretization.num_elements = 3;
+  const fesd::OcpSolver solver(fesd::buildOcp(task, pairs), options);
+  return solver.discretization().nlp().equalityResidual(
+      solver.discretization().guessFrom(plan.guess).data());
+}
+
+TEST(PushPlan, AStraightPushIsOneLegWithAGuessThatSatisfiesTheDynamics) {
+  const fesd::SceneTask task = fesd_test::pushAlongX();
+  const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();
+  const fesd::PushPlan plan = fesd::planPushes(task, pairs);
+  ASSERT_EQ(plan.legs.size(), 1u);
+  EXPECT_EQ(plan.legs[0].begin, plan.contact_time);
+  EXPECT_EQ(plan.legs[0].end, plan.release_time);
+  ASSERT_EQ(plan.legs[0].pushes.size(), 1u);
+  EXPECT_LT((plan.legs[0].pushes[0].offset - Eigen::Vector2d(-1.0, 0.0)).norm(), 1e-12);
+  ASSERT_EQ(plan.transits.size(), 1u);  // the approach; the pusher has no target to return to
+  EXPECT_EQ(plan.transits[0].path.size(), 2u);
+  ASSERT_EQ(plan.guess.switch_times.size(), 1u);
+  EXPECT_EQ(plan.guess.switch_times[0], plan.contact_time);
+  // Pusher in contact from the contact time, element boundaries there: what is left is the
+  // mean controls' interval against a motion that starts mid-interval.
+  EXPECT_LT(guessResidual(task, pairs, plan), 0.02);
+}
+
+TEST(PushPlan, APostInTheWayIsGoneRoundInStraightLegsWithThePusherTurningRoundThePuck) {
   fesd::SceneTask task = fesd_test::pushAlongX();
   task.scene.obstacles() = {{"post", 0.4, Eigen::Vector2d(1.5, 0.0)}};  // dead ahead
   const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();
   const fesd::PushPlan plan = fesd::planPushes(task, pairs);
-  const fesd::ContactPair puck_post{1, fesd::ContactPair::Kind::kObstacle, 0};
-  double sideways = 0.0;
-  for (double t = 0.0; t <= task.horizon; t += 0.005) {
-    const Eigen::VectorXd x = plan.guess.state(t);
-    EXPECT_GT(task.scene.pairGap(puck_post, x), -1e-12) << "t = " << t;
-    sideways = std::max(sideways, std::fabs(x(3)));
+  ASSERT_GE(plan.legs.size(), 2u);
+  EXPECT_LE(plan.legs.size(), 3u);
+  EXPECT_EQ(plan.legs.front().from, task.scene.bodies()[1].position);
+  EXPECT_EQ(plan.legs.back().to, task.bodies[1].target);
+  const Eigen::Vector2d post(1.5, 0.0);
+  for (size_t j = 0; j < plan.legs.size(); ++j) {
+    const fesd::PushLeg& leg = plan.legs[j];
+    // Room beside the puck for the pusher: the post's radius plus the larger radius, 0.5.
+    EXPECT_GE(fesd::segmentDistance(post, leg.from, leg.to), 0.9 - 1e-9) << "leg " << j;
+    ASSERT_EQ(leg.pushes.size(), 1u);
+    const Eigen::VectorXd direction = (leg.to - leg.from).normalized();
+    EXPECT_LT((leg.pushes[0].offset + direction).norm(), 1e-12) << "straight behind, leg " << j;
+    if (j > 0) {
+      EXPECT_EQ(leg.from, plan.legs[j - 1].to);
+      EXPECT_GT(leg.begin, plan.legs[j - 1].end);  // the pusher turns in between
+    }
   }
-  EXPECT_NEAR(sideways, 0.9, 1e-3);  // around it at contact distance, continuously
+  const fesd::ContactPair puck_post{1, fesd::ContactPair::Kind::kObstacle, 0};
+  const fesd::ContactPair pusher_post{0, fesd::ContactPair::Kind::kObstacle, 0};
+  const fesd::ContactPair pusher_puck{0, fesd::ContactPair::Kind::kBody, 1};
+  for (double t = 0.0; t <= task.horizon; t += 0.002) {
+    const Eigen::VectorXd x = plan.guess.state(t);
+    EXPECT_GT(task.scene.pairGap(puck_post, x), 0.0) << "t = " << t;
+    EXPECT_GT(task.scene.pairGap(pusher_post, x), 0.0) << "t = " << t;
+    EXPECT_GT(task.scene.pairGap(pusher_puck, x), -1e-9) << "t = " << t;
+  }
   EXPECT_LT((plan.guess.state(plan.release_time).segment<2>(2) - Eigen::Vector2d(3, 0)).norm(),
             1e-12);
+  EXPECT_LT(guessResidual(task, pairs, plan), 0.25);
+}
+
+TEST(PushPlan, APusherInFrontOfThePuckGoesRoundItToPushFromBehind) {
+  fesd::SceneTask task = fesd_test::pushAlongX();
+  task.scene.bodies()[0].position = Eigen::Vector2d(2.0, 0.2);  // ahead, nearly on the line
+  const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();
+  const fesd::PushPlan plan = fesd::planPushes(task, pairs);
+  ASSERT_EQ(plan.legs.size(), 1u);
+  ASSERT_FALSE(plan.transits.empty());
+  const fesd::Transit& approach = plan.transits.front();
+  EXPECT_EQ(approach.body, 0);
+  EXPECT_GT(approach.path.size(), 2u);
+  EXPECT_LT((approach.path.back() - Eigen::Vector2d(-1.0, 0.0)).norm(), 1e-12);
+  const fesd::ContactPair pusher_puck{0, fesd::ContactPair::Kind::kBody, 1};
+  for (double t = 0.0; t <= plan.contact_time; t += 0.002) {
+    EXPECT_GT(task.scene.pairGap(pusher_puck, plan.guess.state(t)), -1e-9) << "t = " << t;
+  }
+  // The puck rests until the pusher is behind it.
+  EXPECT_EQ(plan.guess.state(0.99 * plan.contact_time).segment<2>(2),
+            task.scene.bodies()[1].position);
+}
+
+TEST(PushPlan, APushAlongAWallIsOneStraightLeg) {
+  fesd::SceneTask task = fesd_test::pushAlongX();
+  task.scene.walls() = {{"wall", Eigen::Vector2d(0.0, 1.0), -0.5}};  // touching the puck
+  const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();
+  const fesd::PushPlan plan = fesd::planPushes(task, pairs);
+  ASSERT_EQ(plan.legs.size(), 1u);
+  for (double t = 0.0; t <= task.horizon; t += 0.01) {
+    const Eigen::VectorXd x = plan.guess.state(t);
+    EXPECT_GE(x(1), -1e-12) << "pusher, t = " << t;
+    EXPECT_GE(x(3), -1e-12) << "puck, t = " << t;
+  }
 }
 
 TEST(PushPlan, ATargetBeyondThePushersReachIsReplacedByTheNearestEndTheyCanPushTo) {

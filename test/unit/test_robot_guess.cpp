@@ -1,4 +1,4 @@
-// The robots' first guess (scene/robot_guess.cpp): the pushing sphere by its rule, the sphere
+// The robots' first guess (planning/robot_guess.cpp): the pushing sphere by its rule, the sphere
 // following the push plan's path through IK at the element boundaries, controls within the
 // joints' limits, and the same guess on every call.
 #include <memory>
@@ -7,7 +7,7 @@
 
 #include "fesd_trajopt/examples/robot_scenes.h"
 #include "fesd_trajopt/kinematics/forward_kinematics.h"
-#include "fesd_trajopt/scene/robot_guess.h"
+#include "fesd_trajopt/planning/robot_guess.h"
 #include "support/robot_files.h"
 
 namespace {

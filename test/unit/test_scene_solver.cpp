@@ -11,7 +11,7 @@
 #include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/examples/robot_scenes.h"
 #include "fesd_trajopt/scene/lazy_pairs.h"
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 #include "support/robot_files.h"
 #include "support/scene_tasks.h"
 

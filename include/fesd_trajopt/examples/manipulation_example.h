@@ -3,7 +3,7 @@
 #include <Eigen/Dense>
 
 #include "fesd_trajopt/model/ocp_definition.h"
-#include "fesd_trajopt/scene/push_plan.h"
+#include "fesd_trajopt/planning/push_plan.h"
 #include "fesd_trajopt/scene/scene.h"
 #include "fesd_trajopt/scene/scene_task.h"
 

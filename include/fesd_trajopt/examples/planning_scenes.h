@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 #include "fesd_trajopt/scene/scene_task.h"
 
 namespace fesd {

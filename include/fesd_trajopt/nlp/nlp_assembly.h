@@ -109,6 +109,9 @@ class NlpAssembly : public RelaxedMpcc {
   }
   const std::vector<int>& complementarityRows() const override { return complementarity_rows_; }
   double complementarityResidual(const double* x) const override;
+  /// Largest |g_i(x) - b_i| over the equality rows (dynamics and algebraic equations): how far
+  /// a guess is from satisfying them.
+  double equalityResidual(const double* x) const;
   std::vector<bool> identifyActiveSet(const double* x) const override;
   bool fixActiveSet(const double* x, int flip = -1) override;
   void setBiactiveRule(double fraction, double sigma) override {

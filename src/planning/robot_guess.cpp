@@ -1,11 +1,11 @@
-#include "fesd_trajopt/scene/robot_guess.h"
+#include "fesd_trajopt/planning/robot_guess.h"
 
 #include <algorithm>
 #include <limits>
 
 #include "fesd_trajopt/kinematics/forward_kinematics.h"
 #include "fesd_trajopt/kinematics/inverse_kinematics.h"
-#include "fesd_trajopt/scene/push_plan.h"
+#include "fesd_trajopt/planning/push_plan.h"
 
 namespace fesd {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
-#include "fesd_trajopt/scene/accuracy_ladder.h"
+#include "fesd_trajopt/planning/accuracy_ladder.h"
 #include "fesd_trajopt/scene/scene_task.h"
 #include "fesd_trajopt/scene/warm_start.h"
 
@@ -52,6 +52,10 @@ struct SceneOutcome {
   std::vector<double> target_distances;
   /// Per joint: |q_j(T) - target| (NaN without a target).
   std::vector<double> joint_target_distances;
+  /// The first guess's residual in the NLP's equations (NlpAssembly::equalityResidual at its
+  /// point on the first round's grid): how far it is from dynamics consistent with its contacts.
+  /// NaN when the solve started from a previous solution.
+  double guess_residual = std::numeric_limits<double>::quiet_NaN();
 
   bool solved() const { return invalid.empty() && infeasible.empty(); }
   int modelledPairs() const {

@@ -1,11 +1,11 @@
 // The accuracy ladder: what accuracy costs in time, answered per request.
-#include "fesd_trajopt/scene/accuracy_ladder.h"
+#include "fesd_trajopt/planning/accuracy_ladder.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 
 namespace fesd {
 

@@ -1,4 +1,4 @@
-#include "fesd_trajopt/scene/scene_solver.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,11 +6,11 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "fesd_trajopt/planning/push_plan.h"
+#include "fesd_trajopt/planning/robot_guess.h"
 #include "fesd_trajopt/scene/lazy_pairs.h"
 #include "fesd_trajopt/scene/moving_part.h"
 #include "fesd_trajopt/scene/pair_check.h"
-#include "fesd_trajopt/scene/push_plan.h"
-#include "fesd_trajopt/scene/robot_guess.h"
 #include "fesd_trajopt/solver/memory_estimate.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 
@@ -303,6 +303,10 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
       const bool warm = options.previous != nullptr && outcome.cold_start_reason.empty();
       OcpSolution previous;
       if (warm) previous.report = options.previous->report;
+      if (!warm) {
+        outcome.guess_residual =
+            nlp.equalityResidual(solver.discretization().guessFrom(guess).data());
+      }
       solution = warm ? solver.solve(previous, guess) : solver.solve(guess);
       if (warm && solution.start != OcpStart::kPrevious) {
         outcome.cold_start_reason = "the warm solve failed";

@@ -1,0 +1,51 @@
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace fesd {
+
+/// A disc the path keeps out of: no point of the path comes nearer its centre than `distance`;
+/// where the path turns round it, it keeps `corner` (>= distance) from it, so that what moves
+/// along the path has room to turn there (a pusher going round the body it pushes).
+struct KeepOut {
+  Eigen::Vector2d centre;
+  double distance;
+  double corner;
+};
+
+/// The question for pathAround: from `from` to `to` keeping out of the discs, the turning points
+/// inside a convex region (`allowed`, e.g. walls and a workspace box; empty: the plane), every
+/// piece travelled from a to b passing `passable(a, b)` too (empty: any; e.g. what trails the
+/// mover along the piece must be clear). Every piece costs `leg_cost` on top of its length, so
+/// that fewer turns win a near tie.
+struct PathQuery {
+  Eigen::Vector2d from, to;
+  std::vector<KeepOut> keep_out;
+  std::function<bool(const Eigen::Vector2d&)> allowed;
+  double leg_cost = 0.0;
+  std::function<bool(const Eigen::Vector2d&, const Eigen::Vector2d&)> passable;
+  /// Turning points to consider besides those round the discs (e.g. where a last piece into a
+  /// tight goal can start).
+  std::vector<Eigen::Vector2d> waypoints;
+};
+
+/// Turning points per disc: their polygon lies outside the corner circle.
+constexpr int kTurningPointsPerDisc = 16;
+
+/// The shortest path (length plus leg_cost per piece) from `from` to `to` as a polyline through
+/// turning points on polygons around the discs (a visibility graph searched by Dijkstra in a
+/// fixed order, so the same question gives the same path on every machine). A disc that holds
+/// `from` or `to` is kept out of only as far as they lie from its centre: what starts or ends
+/// near it comes no nearer. Without a path that keeps out of them all: the straight segment.
+std::vector<Eigen::Vector2d> pathAround(const PathQuery& query);
+
+/// The length of a polyline (in any dimension).
+double pathLength(const std::vector<Eigen::VectorXd>& path);
+
+/// The point at arc length fraction s (clamped to [0, 1]) along a polyline.
+Eigen::VectorXd pointAlong(const std::vector<Eigen::VectorXd>& path, double s);
+
+}  // namespace fesd

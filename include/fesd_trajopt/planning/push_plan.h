@@ -1,0 +1,86 @@
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "fesd_trajopt/discretization/trajectory_guess.h"
+#include "fesd_trajopt/scene/scene_task.h"
+
+namespace fesd {
+
+/// An actuated body pushing a passive one: during the push it sits at pushed + offset,
+/// |offset| = the sum of their radii, i.e. exactly in contact.
+struct PushAssignment {
+  int pusher, pushed;  ///< body indices in the task
+  Eigen::VectorXd offset;
+};
+
+/// One straight push of a body: from `from` to `to` during [begin, end], its pushers at the
+/// offsets of `pushes` (the same pushers, in the same order, in every leg of the body).
+struct PushLeg {
+  int pushed;
+  Eigen::VectorXd from, to;
+  double begin, end;
+  std::vector<PushAssignment> pushes;
+};
+
+/// An actuated body's path that touches nothing it does not push: to its first pushing pose
+/// (the approach), round the pushed body to its pose for the next leg, to its own target after
+/// the push, or, without a push, from its start to its target. Traversed at constant speed.
+struct Transit {
+  int body;
+  double begin, end;
+  std::vector<Eigen::VectorXd> path;  ///< turning points, from start to end
+};
+
+/// A first guess for a scene task's OCP from a plan of contacts in three phases shared by all
+/// bodies: approach (each pusher goes to its first pushing pose), push (every passive body with
+/// a target is pushed to it in straight legs; between legs it rests while its pushers go round
+/// it to their poses for the next leg), return (the pushers go to their own targets). Phase and
+/// leg lengths are those of least control effort for this motion (tau ~ the root of the summed
+/// squared displacements of control). Bodies without a push go to their targets over the
+/// horizon, or stay.
+///
+/// What is in the way: in the plane, a pushed body's legs go round the obstacles with room for
+/// its pushers beside it and, at each turn, round it (pathAround), and stay clear of the walls;
+/// every transit goes round the obstacles and passive bodies. The passive bodies without a
+/// target move only when pushed, as the projected dynamics move them: whatever pushes into them
+/// shoves them along the contact normal, and they shove others in turn (chains), simulated in
+/// small time steps. In space, legs and transits are straight.
+///
+/// lambda of every pair in contact is the nonnegative least-squares force that moves the passive
+/// bodies along their planned paths; the controls are the planned velocities minus the contact
+/// reactions. The plan is a deterministic function of the task, so the OCP solved from it is the
+/// same on every machine (OcpSolver::solve(guess)).
+struct PushPlan {
+  /// Where the push phase begins and ends (both the horizon when nothing is pushed).
+  double contact_time = 0.0, release_time = 0.0;
+  std::vector<PushAssignment> pushes;  ///< of each pushed body's first leg
+  std::vector<PushLeg> legs;           ///< in the order of the bodies, then of time
+  std::vector<Transit> transits;       ///< of the actuated bodies, in order of body and time
+  /// Pushed bodies whose target the pushers cannot reach (workspace bounds, it lies in an
+  /// obstacle, or not within the horizon at their speed bounds): the plan pushes them to the
+  /// nearest end they can.
+  struct ShortPush {
+    int body;
+    Eigen::VectorXd end;
+    /// Only the time rules the target out: pushing towards it as far as time allows (the end)
+    /// is then the best plan for the target itself.
+    bool time_limited = false;
+  };
+  std::vector<ShortPush> short_pushes;
+  TrajectoryGuess guess;  ///< of the task's full state; multipliers per pair of planPushes' list
+};
+
+/// Pushers: each actuated body pushes at most one passive body with a target, through a body
+/// pair of `pairs`. Its pushing pose in a leg is the one most directly behind the leg's direction
+/// (tilted in steps of 1 degree up to 89) that keeps it inside its workspace bounds at the
+/// start and end of the leg and apart from the pushers placed before it. A body pushed in
+/// several legs keeps the pushers of its first; when one of them finds no pose in a later leg,
+/// the body is pushed straight instead. Only the pairs in
+/// `pairs` touch in the plan, and the guess's multipliers are theirs, in that order. A target
+/// no placement of pushers can push to is replaced in the plan by the nearest end one can.
+PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs);
+
+}  // namespace fesd
