@@ -143,9 +143,11 @@ std::vector<double> guessSteps(const NlpAssembly& nlp, const CollocationGrid& gr
   return steps;
 }
 
-std::vector<double> guessGridPoints(const NlpAssembly& nlp, const CollocationGrid& grid,
-                                    const ButcherTableau& tableau, double h0, int nx, int nu,
-                                    const TrajectoryGuess& guess, std::vector<double>& x) {
+std::vector<std::vector<double>> guessGridPoints(const NlpAssembly& nlp,
+                                                 const CollocationGrid& grid,
+                                                 const ButcherTableau& tableau, double h0, int nx,
+                                                 int nu, const TrajectoryGuess& guess,
+                                                 std::vector<double>& x) {
   if (!guess.state) throw std::invalid_argument("TrajectoryGuess: no state");
   auto set_state = [&](int first, double time) {
     const Eigen::VectorXd state = guess.state(time);
@@ -153,20 +155,23 @@ std::vector<double> guessGridPoints(const NlpAssembly& nlp, const CollocationGri
     std::copy(state.data(), state.data() + nx, x.begin() + first);
   };
   const std::vector<double> steps = guessSteps(nlp, grid, h0, guess.switch_times);
-  std::vector<double> starts;
-  double t = 0.0;
+  std::vector<std::vector<double>> stage_times(grid.numElements());
+  double start = 0.0;
   for (int e = 0; e < grid.numElements(); ++e) {
-    // Interval ends at their nominal times exactly, as the interval-length rows demand.
-    if (e % grid.elements_per_interval == 0) t = e * h0;
-    starts.push_back(t);
-    for (int i = 0; i < tableau.stages; ++i)
-      set_state(grid.stage_states[e][i], t + tableau.c(i) * steps[e]);
-    t += steps[e];
-    set_state(grid.end_states[e], t);
+    // Nominal elements at (e + c_i) h0 exactly; interval ends at their nominal times, as the
+    // interval-length rows demand.
+    const bool nominal = steps[e] == h0;
+    if (e % grid.elements_per_interval == 0 || nominal) start = e * h0;
+    for (int i = 0; i < tableau.stages; ++i) {
+      stage_times[e].push_back(nominal ? (e + tableau.c(i)) * h0 : start + tableau.c(i) * steps[e]);
+      set_state(grid.stage_states[e][i], stage_times[e].back());
+    }
+    start = nominal ? (e + 1) * h0 : start + steps[e];
+    set_state(grid.end_states[e], start);
     x[grid.steps[e]] = steps[e];
   }
   guessControls(nlp, grid, nu, guess.controls, x);
-  return starts;
+  return stage_times;
 }
 
 void addIntervalLengthRows(NlpAssembly& nlp, const CollocationGrid& grid,

@@ -98,8 +98,8 @@ bool onATarget(const SceneTask& task, const Eigen::VectorXd& p, double r) {
 }  // namespace
 
 const std::vector<std::string>& families() {
-  static const std::vector<std::string> names{"push",   "wall",     "beside",
-                                              "second", "showcase", "cluttered"};
+  static const std::vector<std::string> names{"push",     "wall",      "beside", "second",
+                                              "showcase", "cluttered", "posts"};
   return names;
 }
 
@@ -110,6 +110,7 @@ PlanningScene scene(const std::string& family, unsigned seed) {
   if (family == "second") return secondBodyScene(seed);
   if (family == "showcase") return showcaseScene(seed);
   if (family == "cluttered") return clutteredScene(seed);
+  if (family == "posts") return postsScene(seed);
   throw std::invalid_argument("planning_scenes: unknown family '" + family + "'");
 }
 
@@ -171,6 +172,57 @@ PlanningScene clutteredScene(unsigned seed) {
   result.pushed = pushed;
   result.description = text.str();
   return result;
+}
+
+PlanningScene postsScene(unsigned seed) {
+  SeededUniform random(seed);
+  SceneTask task = pusherAndPuck(random);
+  const Eigen::VectorXd direction = task.bodies[1].target.normalized();
+  const Eigen::Vector2d side(-direction(1), direction(0));
+  const bool two_pushers = random() < 0.5;
+  if (two_pushers) {
+    task.scene.bodies().push_back({"helper", 0.5, Eigen::VectorXd(random(2.0, 3.0) * side), true});
+    task.bodies.emplace_back();
+    task.bodies.back().max_speed = 4.0;
+  }
+  // A longer push than pusherAndPuck's, so that there is room to go round what is on its line.
+  task.bodies[1].target *= 1.5;
+  const Eigen::VectorXd target = task.bodies[1].target;
+  // Posts leave a pusher's width (and some) between each other and from the target, so that
+  // the pushers can take the puck round them.
+  const double room = 2.0 * 0.5 + 0.3, r_puck = 0.5;
+  const int posts = random.integer(3, 7), on_the_line = random.integer(1, 2);
+  const Eigen::VectorXd low = target.cwiseMin(Eigen::Vector2d::Zero()).array() - 3.0;
+  const Eigen::VectorXd high = target.cwiseMax(Eigen::Vector2d::Zero()).array() + 3.0;
+  for (int tries = 0; static_cast<int>(task.scene.obstacles().size()) < posts && tries < 1000;
+       ++tries) {
+    const double r = random(0.2, 0.5);
+    const bool on = static_cast<int>(task.scene.obstacles().size()) < on_the_line;
+    const Eigen::VectorXd p =
+        on ? Eigen::VectorXd(random(0.3, 0.7) * target + random(-0.5, 0.5) * r_puck * side)
+           : Eigen::VectorXd(Eigen::Vector2d(random(low(0), high(0)), random(low(1), high(1))));
+    const bool apart = std::all_of(
+        task.scene.obstacles().begin(), task.scene.obstacles().end(),
+        [&](const SceneObstacle& o) { return (o.position - p).norm() >= o.radius + r + room; });
+    if (!apart || !fits(task.scene, p, r, 0.3) || (p - target).norm() < r_puck + r + room) continue;
+    task.scene.obstacles().push_back(
+        {"post_" + std::to_string(task.scene.obstacles().size()), r, p});
+  }
+  const int stones = random.integer(0, 3);
+  for (int placed = 0, tries = 0; placed < stones && tries < 1000; ++tries) {
+    const double r = random(0.2, 0.4);
+    const Eigen::VectorXd p(Eigen::Vector2d(random(low(0), high(0)), random(low(1), high(1))));
+    if (!fits(task.scene, p, r, 0.3) ||
+        segmentDistance(p, Eigen::Vector2d::Zero(), target) < r_puck + r + 0.3) {
+      continue;
+    }
+    task.scene.bodies().push_back({"stone_" + std::to_string(placed++), r, p, false});
+    task.bodies.emplace_back();
+  }
+  std::ostringstream what;
+  what << (two_pushers ? "two pushers" : "one pusher") << ", " << task.scene.obstacles().size()
+       << " posts (" << on_the_line << " on the line), " << stones << " stones";
+  return described("posts", seed, std::move(task), 1, true, what.str());
 }
 
 double smallestRelativeGap(const SceneTask& task, const std::vector<PairDecision>& decisions,

@@ -87,6 +87,65 @@ std::vector<Eigen::Vector2d> pathAround(const PathQuery& query) {
   return path;
 }
 
+RoundedPath::RoundedPath(const std::vector<Eigen::Vector2d>& corners, double radius) {
+  Eigen::Vector2d from = corners.front();
+  const auto straight = [&](const Eigen::Vector2d& to) {
+    const double length = (to - from).norm();
+    if (length > 0.0) {
+      pieces_.push_back(
+          {length_, length, from, (to - from) / length, Eigen::Vector2d::Zero(), 0.0, 0.0, 0.0});
+      length_ += length;
+    }
+    from = to;
+  };
+  for (size_t k = 1; k + 1 < corners.size(); ++k) {
+    const Eigen::Vector2d in = (corners[k] - corners[k - 1]).normalized();
+    const Eigen::Vector2d out = (corners[k + 1] - corners[k]).normalized();
+    const double turn = std::atan2(in.x() * out.y() - in.y() * out.x(), in.dot(out));
+    const double half = std::tan(0.5 * std::fabs(turn));
+    if (half < 1e-12) continue;
+    // Each arc uses at most half of its pieces, so that neighbouring arcs do not overlap.
+    const double room =
+        0.5 * std::min((corners[k] - corners[k - 1]).norm(), (corners[k + 1] - corners[k]).norm());
+    const double r = std::min(radius, room / half);
+    const Eigen::Vector2d enter = corners[k] - r * half * in;
+    straight(enter);
+    const Eigen::Vector2d normal = (turn > 0.0 ? 1.0 : -1.0) * Eigen::Vector2d(-in.y(), in.x());
+    const Eigen::Vector2d centre = enter + r * normal;
+    const Eigen::Vector2d away = enter - centre;
+    pieces_.push_back(
+        {length_, r * std::fabs(turn), enter, in, centre, r, std::atan2(away.y(), away.x()), turn});
+    length_ += r * std::fabs(turn);
+    from = corners[k] + r * half * out;
+  }
+  straight(corners.back());
+  if (pieces_.empty())
+    pieces_.push_back(
+        {0.0, 0.0, from, Eigen::Vector2d::UnitX(), Eigen::Vector2d::Zero(), 0.0, 0.0, 0.0});
+}
+
+const RoundedPath::Piece& RoundedPath::pieceAt(double& s) const {
+  s = std::clamp(s, 0.0, length_);
+  size_t k = 0;
+  while (k + 1 < pieces_.size() && s > pieces_[k].begin + pieces_[k].length) ++k;
+  s -= pieces_[k].begin;
+  return pieces_[k];
+}
+
+Eigen::Vector2d RoundedPath::at(double s) const {
+  const Piece& piece = pieceAt(s);
+  if (piece.radius == 0.0) return piece.start + s * piece.direction;
+  const double angle = piece.angle + piece.sweep * s / piece.length;
+  return piece.centre + piece.radius * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+}
+
+Eigen::Vector2d RoundedPath::tangent(double s) const {
+  const Piece& piece = pieceAt(s);
+  if (piece.radius == 0.0) return piece.direction;
+  const double angle = piece.angle + piece.sweep * s / piece.length;
+  return (piece.sweep > 0.0 ? 1.0 : -1.0) * Eigen::Vector2d(-std::sin(angle), std::cos(angle));
+}
+
 double pathLength(const std::vector<Eigen::VectorXd>& path) {
   double length = 0.0;
   for (size_t k = 1; k < path.size(); ++k) length += (path[k] - path[k - 1]).norm();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "fesd_trajopt/planning/paths_around.h"
 #include "fesd_trajopt/planning/pusher_poses.h"
@@ -82,6 +83,13 @@ PlannedMotion::PlannedMotion(const SceneTask& task, const std::vector<ContactPai
   }
   for (size_t k = 0; k < legs_.size(); ++k) {
     const PushLeg& leg = legs_[k];
+    rounded_.emplace_back();
+    if (!leg.through.empty()) {
+      std::vector<Eigen::Vector2d> corners{leg.from};
+      corners.insert(corners.end(), leg.through.begin(), leg.through.end());
+      corners.push_back(leg.to);
+      rounded_.back() = std::make_shared<const RoundedPath>(corners, leg.turn_radius);
+    }
     pieces_[leg.pushed].push_back({leg.begin, leg.end, -1, static_cast<int>(k), {}});
     for (const PushAssignment& push : leg.pushes) {
       pieces_[push.pusher].push_back({leg.begin, leg.end, -1, static_cast<int>(k), push.offset});
@@ -185,8 +193,20 @@ Eigen::VectorXd PlannedMotion::plannedPosition(int body, double t) const {
       continue;
     }
     const PushLeg& leg = legs_[piece.leg];
-    p = along(leg.from, leg.to, s);
-    if (piece.offset.size()) p += piece.offset;
+    if (!rounded_[piece.leg]) {
+      p = along(leg.from, leg.to, s);
+      if (piece.offset.size()) p += piece.offset;
+      continue;
+    }
+    // Along the rounded path, the pushers turned with its tangent.
+    const RoundedPath& path = *rounded_[piece.leg];
+    const double arc = std::clamp(s, 0.0, 1.0) * path.length();
+    p = path.at(arc);
+    if (piece.offset.size()) {
+      const Eigen::Vector2d now = path.tangent(arc), first = path.tangent(0.0);
+      const double turn = std::atan2(first.x() * now.y() - first.y() * now.x(), first.dot(now));
+      p += Eigen::Rotation2Dd(turn) * Eigen::Vector2d(piece.offset);
+    }
   }
   return p;
 }

@@ -45,9 +45,10 @@ std::vector<Eigen::VectorXd> inScene(const std::vector<Eigen::Vector2d>& path) {
   return std::vector<Eigen::VectorXd>(path.begin(), path.end());
 }
 
-/// An actuated body's path from `from` to `to` round the obstacles and the passive bodies at
-/// `rest` (their positions meanwhile); `touched` (-1: none), the body it arrives at or leaves in
-/// contact, is kept out of at exactly the contact distance. Straight in space.
+/// An actuated body's path from `from` to `to` round the obstacles and the bodies at rest (`rest`:
+/// their positions meanwhile; empty for bodies that move on their own); `touched` (-1: none), the
+/// body it arrives at or leaves in contact, is kept out of at exactly the contact distance.
+/// Straight in space.
 std::vector<Eigen::VectorXd> transitPath(const SceneTask& task, int body,
                                          const Eigen::VectorXd& from, const Eigen::VectorXd& to,
                                          const std::vector<Eigen::VectorXd>& rest, int touched) {
@@ -62,7 +63,7 @@ std::vector<Eigen::VectorXd> transitPath(const SceneTask& task, int body,
     query.keep_out.push_back({obstacle.position, distance, distance});
   }
   for (size_t b = 0; b < scene.bodies().size(); ++b) {
-    if (scene.bodies()[b].actuated) continue;
+    if (static_cast<int>(b) == body || rest[b].size() == 0) continue;
     const double contact = scene.bodies()[b].radius + radius;
     const double distance = static_cast<int>(b) == touched ? contact : (1.0 + kClearance) * contact;
     query.keep_out.push_back({rest[b], distance, (1.0 + kClearance) * contact});
@@ -73,31 +74,33 @@ std::vector<Eigen::VectorXd> transitPath(const SceneTask& task, int body,
 
 /// The turning points of a pushed body's legs from its start to `end`: round the obstacles (as
 /// near as touching: a straight push that grazes a post is still the push to plan), its pusher
-/// (radius `pusher_radius`, straight behind it) clear of them too along each leg, with room at
-/// each turn for the pusher to go round it; fewer legs win near ties (a leg costs half a turn of
-/// a pusher round it). Straight in space.
+/// (radius `pusher_radius`, straight behind it) clear of them too along each leg; fewer legs win
+/// near ties (a leg costs half a turn of a pusher round it). Passive bodies on the way are shoved
+/// (going round them through clutter cost the solver up to 40 times the iterations on the
+/// cluttered sweep). Without such legs the push is straight. Straight in space.
 std::vector<Eigen::VectorXd> legPoints(const SceneTask& task, int pushed,
                                        const Eigen::VectorXd& end, double pusher_radius) {
   const Scene& scene = task.scene;
   const Eigen::VectorXd start = scene.bodies()[pushed].position;
   if (scene.dimension() != 2) return {start, end};
   const double radius = scene.bodies()[pushed].radius;
+  std::vector<std::pair<Eigen::Vector2d, double>> fixed;  // centre, radius of each obstacle
+  for (const SceneObstacle& obstacle : scene.obstacles()) {
+    fixed.push_back({obstacle.position, obstacle.radius});
+  }
   PathQuery query;
   query.from = start;
   query.to = end;
-  for (const SceneObstacle& obstacle : scene.obstacles()) {
-    query.keep_out.push_back(
-        {obstacle.position, obstacle.radius + radius,
-         (1.0 + kClearance) * (obstacle.radius + radius + 2.0 * pusher_radius)});
+  for (const auto& [centre, r] : fixed) {
+    query.keep_out.push_back({centre, r + radius, (1.0 + kClearance) * (r + radius)});
   }
-  query.passable = [&scene, behind = radius + pusher_radius, pusher_radius](
+  query.passable = [fixed, behind = radius + pusher_radius, pusher_radius](
                        const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     const Eigen::Vector2d back = -behind * (b - a).normalized();
-    return std::all_of(
-        scene.obstacles().begin(), scene.obstacles().end(), [&](const SceneObstacle& obstacle) {
-          return segmentDistance(obstacle.position, Eigen::VectorXd(a + back),
-                                 Eigen::VectorXd(b + back)) >= obstacle.radius + pusher_radius;
-        });
+    return std::all_of(fixed.begin(), fixed.end(), [&](const auto& disc) {
+      return segmentDistance(disc.first, Eigen::VectorXd(a + back), Eigen::VectorXd(b + back)) >=
+             disc.second + pusher_radius;
+    });
   };
   query.allowed = roomFor(task, pushed, radius + 2.0 * pusher_radius);
   query.leg_cost = M_PI * (radius + pusher_radius);
@@ -115,126 +118,92 @@ std::vector<Eigen::VectorXd> legPoints(const SceneTask& task, int pushed,
   return inScene(pathAround(query));
 }
 
+/// A push's turning points from its start to its end.
+std::vector<Eigen::VectorXd> legCorners(const PushLeg& leg) {
+  std::vector<Eigen::VectorXd> corners{leg.from};
+  corners.insert(corners.end(), leg.through.begin(), leg.through.end());
+  corners.push_back(leg.to);
+  return corners;
+}
+
 double squaredLength(const std::vector<Eigen::VectorXd>& path) {
+  if (path.size() == 2) return (path[1] - path[0]).squaredNorm();
   const double length = pathLength(path);
   return length * length;
 }
 
-/// The legs of one pushed body along `points` with the pushers of its straight push, each placed
-/// anew for its leg's direction; empty when one of them finds no pose for a leg.
-std::vector<PushLeg> legsAlong(const SceneTask& task, const std::vector<ContactPair>& pairs,
-                               int pushed, const std::vector<Eigen::VectorXd>& points,
-                               const std::vector<PushAssignment>& pushers) {
-  std::vector<PushLeg> legs;
-  for (size_t j = 0; j + 1 < points.size(); ++j) {
-    std::vector<bool> busy(task.scene.bodies().size(), true);
-    for (const PushAssignment& push : pushers) busy[push.pusher] = false;
-    PushLeg leg{pushed, points[j], points[j + 1], 0.0, 0.0, {}};
-    leg.pushes = placePushers(task, pairs, pushed, leg.from, leg.to, busy);
-    if (leg.pushes.size() != pushers.size()) return {};
-    legs.push_back(std::move(leg));
-  }
-  return legs;
-}
-
-/// The control effort of a leg (the summed squared displacement of its pushers' controls): a
+/// The control effort of a push (the summed squared displacement of its pushers' controls): a
 /// pusher's control is its velocity minus the reaction 2 offset lambda, with the impulses
-/// (lambda times the leg's duration) that move the body by the leg, G impulse = to - from (G's
-/// columns grad_{p_pushed} c = -2 offset).
-double legEffort(const PushLeg& leg) {
-  Eigen::MatrixXd G(leg.from.size(), leg.pushes.size());
-  for (size_t k = 0; k < leg.pushes.size(); ++k) G.col(k) = -2.0 * leg.pushes[k].offset;
-  const Eigen::VectorXd impulse = nonnegativeLeastSquares(G, leg.to - leg.from);
+/// (lambda times the push's duration) that move the body by `displacement`, G impulse =
+/// displacement (G's columns grad_{p_pushed} c = -2 offset). A turning push counts as straight
+/// along its first direction for its length: its pushers turn with it.
+double pushEffort(const std::vector<PushAssignment>& pushes, const Eigen::VectorXd& displacement) {
+  Eigen::MatrixXd G(displacement.size(), pushes.size());
+  for (size_t k = 0; k < pushes.size(); ++k) G.col(k) = -2.0 * pushes[k].offset;
+  const Eigen::VectorXd impulse = nonnegativeLeastSquares(G, displacement);
   double effort = 0.0;
-  for (size_t k = 0; k < leg.pushes.size(); ++k) {
-    effort += (leg.to - leg.from - 2.0 * leg.pushes[k].offset * impulse(k)).squaredNorm();
+  for (size_t k = 0; k < pushes.size(); ++k) {
+    effort += (displacement - 2.0 * pushes[k].offset * impulse(k)).squaredNorm();
   }
   return effort;
 }
 
-/// One pushed body's plan between contact and release: its legs, and between them its pushers'
-/// transits round it, each of a duration of least effort within the push phase.
-struct BodyPush {
-  std::vector<PushLeg> legs;
-  /// transits[j][k]: pusher k of the legs from its pose in leg j to its pose in leg j + 1.
-  std::vector<std::vector<std::vector<Eigen::VectorXd>>> turns;
-
-  double effort() const {
-    double total = 0.0;
-    for (double e : pieceEfforts()) total += e;
-    return total;
-  }
-  /// Leg 0, turn 0, leg 1, ...
-  std::vector<double> pieceEfforts() const {
-    std::vector<double> efforts;
-    for (size_t j = 0; j < legs.size(); ++j) {
-      efforts.push_back(legEffort(legs[j]));
-      if (j >= turns.size()) continue;
-      double turn = 0.0;
-      for (const std::vector<Eigen::VectorXd>& path : turns[j]) turn += squaredLength(path);
-      efforts.push_back(turn);
+/// The pushers whose force the push needs (a positive impulse in pushEffort's sense); the others
+/// are free again. A pusher tilted far from straight behind, beside one straight behind, adds
+/// nothing but a body to carry along.
+std::vector<PushAssignment> contributing(const std::vector<PushAssignment>& pushers,
+                                         const Eigen::VectorXd& displacement,
+                                         std::vector<bool>& busy) {
+  Eigen::MatrixXd G(displacement.size(), pushers.size());
+  for (size_t k = 0; k < pushers.size(); ++k) G.col(k) = -2.0 * pushers[k].offset;
+  const Eigen::VectorXd impulse = nonnegativeLeastSquares(G, displacement);
+  std::vector<PushAssignment> needed;
+  for (size_t k = 0; k < pushers.size(); ++k) {
+    if (impulse(k) > 0.0) {
+      needed.push_back(pushers[k]);
+    } else {
+      busy[pushers[k].pusher] = false;
     }
-    return efforts;
   }
-};
+  return needed;
+}
 
-BodyPush planBodyPush(const SceneTask& task, const std::vector<ContactPair>& pairs, int pushed,
-                      const Eigen::VectorXd& end, const std::vector<PushAssignment>& pushers,
-                      const std::vector<Eigen::VectorXd>& rest) {
+/// The push of one body from its start to `end` by `pushers` (placed for the straight push):
+/// straight, or in legs round the obstacles (legPoints) when the straight push is not passable,
+/// its corners rounded by the pushed body's and its largest pusher's radii.
+PushLeg planBodyPush(const SceneTask& task, int pushed, const Eigen::VectorXd& end,
+                     const std::vector<PushAssignment>& pushers) {
   const Scene& scene = task.scene;
-  const Eigen::VectorXd start = scene.bodies()[pushed].position;
-  BodyPush push;
+  PushLeg leg{pushed, scene.bodies()[pushed].position, end, 0.0, 0.0, pushers, {}, 0.0};
   double pusher_radius = 0.0;
   for (const PushAssignment& p : pushers) {
     pusher_radius = std::max(pusher_radius, scene.bodies()[p.pusher].radius);
   }
   const std::vector<Eigen::VectorXd> points = legPoints(task, pushed, end, pusher_radius);
-  if (points.size() > 2) push.legs = legsAlong(task, pairs, pushed, points, pushers);
-  if (push.legs.empty()) {
-    push.legs = {{pushed, start, end, 0.0, 0.0, pushers}};
-    return push;
+  if (points.size() == 2) return leg;
+  leg.through.assign(points.begin() + 1, points.end() - 1);
+  leg.turn_radius = scene.bodies()[pushed].radius + pusher_radius;
+  // The pushers start behind the first leg's direction, as placed for it, and turn with the path.
+  const Eigen::VectorXd direction = (points[1] - points[0]).normalized();
+  for (PushAssignment& push : leg.pushes) {
+    const Eigen::VectorXd straight = (end - leg.from).normalized();
+    const double angle = std::atan2(straight(0) * direction(1) - straight(1) * direction(0),
+                                    straight.dot(direction));
+    const Eigen::Rotation2Dd turn(angle);
+    push.offset = turn * Eigen::Vector2d(push.offset);
   }
-  std::vector<Eigen::VectorXd> resting = rest;
-  for (size_t j = 0; j + 1 < push.legs.size(); ++j) {
-    const Eigen::VectorXd at = push.legs[j].to;
-    resting[pushed] = at;
-    std::vector<std::vector<Eigen::VectorXd>> turn;
-    for (size_t k = 0; k < pushers.size(); ++k) {
-      turn.push_back(transitPath(task, pushers[k].pusher, at + push.legs[j].pushes[k].offset,
-                                 at + push.legs[j + 1].pushes[k].offset, resting, pushed));
-    }
-    push.turns.push_back(std::move(turn));
-  }
-  return push;
-}
-
-/// Times the pieces of a body's push within [begin, end] by least effort (durations ~ the roots
-/// of their efforts) and adds its legs and turns to the plan.
-void schedule(const BodyPush& push, double begin, double end, PushPlan& plan) {
-  const std::vector<double> efforts = push.pieceEfforts();
-  double total = 0.0;
-  for (double e : efforts) total += std::sqrt(e);
-  double t = begin;
-  for (size_t piece = 0; piece < efforts.size(); ++piece) {
-    const double next = piece + 1 == efforts.size() ? end
-                        : total > 0.0 ? t + (end - begin) * std::sqrt(efforts[piece]) / total
-                                      : t + (end - begin) / efforts.size();
-    if (piece % 2 == 0) {
-      PushLeg leg = push.legs[piece / 2];
-      leg.begin = t;
-      leg.end = next;
-      plan.legs.push_back(std::move(leg));
-    } else {
-      const PushLeg& before = push.legs[piece / 2];
-      for (size_t k = 0; k < before.pushes.size(); ++k) {
-        plan.transits.push_back({before.pushes[k].pusher, t, next, push.turns[piece / 2][k]});
-      }
-    }
-    t = next;
-  }
+  return leg;
 }
 
 }  // namespace
+
+Eigen::VectorXd endOffset(const PushLeg& leg, size_t k) {
+  const Eigen::VectorXd& offset = leg.pushes[k].offset;
+  if (leg.through.empty()) return offset;
+  const Eigen::Vector2d first = leg.through.front() - leg.from, last = leg.to - leg.through.back();
+  const double turn = std::atan2(first.x() * last.y() - first.y() * last.x(), first.dot(last));
+  return Eigen::Rotation2Dd(turn) * Eigen::Vector2d(offset);
+}
 
 PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs) {
   const Scene& scene = task.scene;
@@ -242,10 +211,9 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
   PushPlan plan;
   SceneTask planned = task;  // with the pushed bodies' ends the pushers can reach
   std::vector<bool> busy(count, false);
-  std::vector<Eigen::VectorXd> starts, ends;
+  std::vector<Eigen::VectorXd> starts;
   for (const SceneBody& body : scene.bodies()) starts.push_back(body.position);
-  ends = starts;
-  std::vector<BodyPush> pushes(count);
+  std::vector<std::vector<PushAssignment>> pushers(count);
   for (int b = 0; b < count; ++b) {
     const BodyTask& t = task.bodies[b];
     if (scene.bodies()[b].actuated || !hasGoal(t) || (t.target - starts[b]).norm() == 0.0) {
@@ -256,36 +224,48 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
     if (end != t.target) plan.short_pushes.push_back(short_push);
     planned.bodies[b].target = end;
     if (end == starts[b]) continue;  // no push: no direction to push from
-    const std::vector<PushAssignment> pushers = placePushers(task, pairs, b, starts[b], end, busy);
-    if (pushers.empty()) continue;
-    ends[b] = end;
-    pushes[b] = planBodyPush(task, pairs, b, end, pushers, starts);
-    const std::vector<PushAssignment>& first = pushes[b].legs.front().pushes;
-    plan.pushes.insert(plan.pushes.end(), first.begin(), first.end());
+    pushers[b] =
+        contributing(placePushers(task, pairs, b, starts[b], end, busy), end - starts[b], busy);
+  }
+  // Bodies at rest unless pushed: the passive ones and the actuators without a target that push
+  // nothing.
+  const auto atRest = [&](std::vector<Eigen::VectorXd> positions) {
+    for (int b = 0; b < count; ++b) {
+      if (scene.bodies()[b].actuated && (hasGoal(task.bodies[b]) || busy[b]))
+        positions[b].resize(0);
+    }
+    return positions;
+  };
+  const std::vector<Eigen::VectorXd> at_start = atRest(starts);
+  std::vector<PushLeg> pushes;
+  for (int b = 0; b < count; ++b) {
+    if (pushers[b].empty()) continue;
+    pushes.push_back(planBodyPush(task, b, planned.bodies[b].target, pushers[b]));
+    plan.pushes.insert(plan.pushes.end(), pushes.back().pushes.begin(), pushes.back().pushes.end());
   }
 
-  // Each pusher's approach (to its first pose, the others resting at their starts); actuated
-  // bodies without a push go to their targets over the horizon.
+  // Each pusher's approach (to its pose, the others resting at their starts).
   std::vector<std::vector<Eigen::VectorXd>> approach(count);
   double approach_effort = 0.0, push_effort = 0.0, back_effort = 0.0;
-  for (const BodyPush& push : pushes) {
-    if (push.legs.empty()) continue;
-    push_effort += push.effort();
-    const PushLeg& first = push.legs.front();
-    for (const PushAssignment& p : first.pushes) {
+  for (const PushLeg& push : pushes) {
+    const std::vector<Eigen::VectorXd> corners = legCorners(push);
+    const Eigen::VectorXd displacement =
+        corners.size() == 2
+            ? Eigen::VectorXd(push.to - push.from)
+            : Eigen::VectorXd(pathLength(corners) * (corners[1] - push.from).normalized());
+    push_effort += pushEffort(push.pushes, displacement);
+    for (const PushAssignment& p : push.pushes) {
       approach[p.pusher] =
-          transitPath(task, p.pusher, starts[p.pusher], first.from + p.offset, starts, p.pushed);
+          transitPath(task, p.pusher, starts[p.pusher], push.from + p.offset, at_start, p.pushed);
       approach_effort += squaredLength(approach[p.pusher]);
     }
   }
-  // Their returns from the last pose to their targets, straight for the phase times; their
+  // Their returns from their last poses to their targets, straight for the phase times; their
   // paths round the bodies where the push left them follow once the push is simulated.
-  for (const BodyPush& push : pushes) {
-    if (push.legs.empty()) continue;
-    const PushLeg& last = push.legs.back();
-    for (const PushAssignment& p : last.pushes) {
-      const BodyTask& t = task.bodies[p.pusher];
-      if (hasGoal(t)) back_effort += (t.target - last.to - p.offset).squaredNorm();
+  for (const PushLeg& push : pushes) {
+    for (size_t k = 0; k < push.pushes.size(); ++k) {
+      const BodyTask& t = task.bodies[push.pushes[k].pusher];
+      if (hasGoal(t)) back_effort += (t.target - push.to - endOffset(push, k)).squaredNorm();
     }
   }
   // Phase lengths of least control effort: with straight, uniform motion a phase of length tau
@@ -302,29 +282,35 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
     plan.release_time =
         std::min(std::max(plan.release_time, plan.contact_time + least.push), task.horizon);
   }
+  for (PushLeg& push : pushes) {
+    push.begin = plan.contact_time;
+    push.end = plan.release_time;
+    plan.legs.push_back(push);
+  }
   for (int b = 0; b < count; ++b) {
-    if (!scene.bodies()[b].actuated) {
-      if (!pushes[b].legs.empty()) schedule(pushes[b], plan.contact_time, plan.release_time, plan);
-    } else if (!approach[b].empty()) {
+    if (!scene.bodies()[b].actuated) continue;
+    if (!approach[b].empty()) {
       plan.transits.push_back({b, 0.0, plan.contact_time, approach[b]});
     } else if (hasGoal(task.bodies[b])) {
-      plan.transits.push_back({b, 0.0, task.horizon,
-                               transitPath(task, b, starts[b], task.bodies[b].target, starts, -1)});
+      // Actuated bodies without a push go to their targets over the horizon.
+      plan.transits.push_back(
+          {b, 0.0, task.horizon,
+           transitPath(task, b, starts[b], task.bodies[b].target, at_start, -1)});
     }
   }
   if (back_effort > 0.0) {
     const PlannedMotion pushed(planned, pairs, plan.legs, plan.transits);
     const Eigen::VectorXd released = pushed.state(plan.release_time);
-    std::vector<Eigen::VectorXd> rest;
-    for (int b = 0; b < count; ++b) rest.push_back(scene.position(b, released));
-    for (const BodyPush& push : pushes) {
-      if (push.legs.empty()) continue;
-      const PushLeg& last = push.legs.back();
-      for (const PushAssignment& p : last.pushes) {
-        if (!hasGoal(task.bodies[p.pusher])) continue;
-        plan.transits.push_back({p.pusher, plan.release_time, task.horizon,
-                                 transitPath(task, p.pusher, last.to + p.offset,
-                                             task.bodies[p.pusher].target, rest, p.pushed)});
+    std::vector<Eigen::VectorXd> released_at;
+    for (int b = 0; b < count; ++b) released_at.push_back(scene.position(b, released));
+    const std::vector<Eigen::VectorXd> rest = atRest(released_at);
+    for (const PushLeg& push : plan.legs) {
+      for (size_t k = 0; k < push.pushes.size(); ++k) {
+        const int pusher = push.pushes[k].pusher;
+        if (!hasGoal(task.bodies[pusher])) continue;
+        plan.transits.push_back({pusher, plan.release_time, task.horizon,
+                                 transitPath(task, pusher, push.to + endOffset(push, k),
+                                             task.bodies[pusher].target, rest, push.pushed)});
       }
     }
   }

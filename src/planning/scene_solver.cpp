@@ -64,16 +64,19 @@ struct FirstGuess {
   TrajectoryGuess guess;  ///< multipliers per pair in reach
   std::vector<PushPlan::ShortPush> short_pushes;
   int pusher_sphere = -1;
+  std::vector<PushLeg> legs;  ///< of a push plan of free bodies
+  std::vector<Transit> transits;
 };
 
 FirstGuess firstGuess(const SceneTask& task, const std::vector<ContactPair>& candidates,
                       const SceneSolveOptions& options) {
   if (task.scene.hasRobot()) {
     RobotGuess robot = planRobotGuess(task, candidates, options.ocp.discretization.num_elements);
-    return {std::move(robot.guess), {}, robot.pusher_sphere};
+    return {std::move(robot.guess), {}, robot.pusher_sphere, {}, {}};
   }
   PushPlan plan = planPushes(task, candidates);
-  return {std::move(plan.guess), std::move(plan.short_pushes), -1};
+  return {std::move(plan.guess), std::move(plan.short_pushes), -1, std::move(plan.legs),
+          std::move(plan.transits)};
 }
 
 /// The first round's pairs, among the pairs in reach (the decisions' modelled ones): all of them
@@ -257,6 +260,8 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
   const std::vector<ContactPair> candidates = modelledPairs(outcome.decisions);
   const FirstGuess first_guess = firstGuess(task, candidates, options);
   outcome.pusher_sphere = first_guess.pusher_sphere;
+  outcome.planned_legs = first_guess.legs;
+  outcome.planned_transits = first_guess.transits;
   // A soft target out of the pushers' reach: the OCP aims at the nearest end the plan can push
   // to (a reachable task, solved as fast as one), and the answer is judged by the real target.
   const SceneTask aimed = reachableTask(task, first_guess);

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "fesd_trajopt/planning/paths_around.h"
 #include "robot_solution.h"
 
 namespace fesd_ros {
@@ -223,7 +224,9 @@ fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
 
 visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
                                              const fesd_trajopt::Solution& solution,
-                                             const std::string& frame_id) {
+                                             const std::string& frame_id,
+                                             const std::vector<fesd::PushLeg>& legs,
+                                             const std::vector<fesd::Transit>& transits) {
   const fesd::Scene& scene = task.scene;
   const bool planar = scene.dimension() == 2;
   visualization_msgs::MarkerArray markers;
@@ -312,6 +315,28 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
   }
   for (const fesd::SceneObstacle& o : scene.obstacles()) {
     disc("obstacles", point(o.position), o.radius, color(0.5, 0.5, 0.5, 1.0));
+  }
+  for (const fesd::PushLeg& leg : legs) {
+    visualization_msgs::Marker arrow = marker("plan_legs", visualization_msgs::Marker::ARROW);
+    arrow.points = {point(leg.from), point(leg.to)};
+    arrow.scale.x = 0.12;  // shaft and head diameters, head length
+    arrow.scale.y = 0.35;
+    arrow.scale.z = 0.4;
+    arrow.color = color(0.9, 0.5, 0.1, 0.8);
+    markers.markers.push_back(arrow);
+  }
+  for (const fesd::Transit& transit : transits) {
+    // Dashed: every other piece of the path cut in tenths of a pusher's radius.
+    visualization_msgs::Marker dashes = marker("plan_transits", visualization_msgs::Marker::LINE_LIST);
+    const double length = fesd::pathLength(transit.path);
+    const int pieces = 2 * std::max(1, static_cast<int>(length / 0.25));
+    for (int k = 0; k < pieces; k += 2) {
+      dashes.points.push_back(point(fesd::pointAlong(transit.path, double(k) / pieces)));
+      dashes.points.push_back(point(fesd::pointAlong(transit.path, double(k + 1) / pieces)));
+    }
+    dashes.scale.x = 0.05;
+    dashes.color = bodyColor(true, 0.8);
+    markers.markers.push_back(dashes);
   }
   for (const fesd::SceneWall& w : scene.walls()) {
     // A thin plate through the wall's closest point to the origin, its x axis along the normal.

@@ -64,9 +64,12 @@ std::vector<nav_msgs::Path> bodyPaths(const fesd_trajopt::Solution& solution);
 
 /// rviz markers of a scene solution, one namespace per layer (bodies_start, bodies_final,
 /// targets, paths, switch_configurations, switch_labels, obstacles, walls), preceded by a
-/// DELETEALL; with a robot, its spheres too (addRobotMarkers).
+/// DELETEALL; with a robot, its spheres too (addRobotMarkers); with a push plan, its legs (arrows,
+/// plan_legs) and its pushers' transits (dashed lines, plan_transits).
 visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
                                              const fesd_trajopt::Solution& solution,
-                                             const std::string& frame_id);
+                                             const std::string& frame_id,
+                                             const std::vector<fesd::PushLeg>& legs = {},
+                                             const std::vector<fesd::Transit>& transits = {});
 
 }  // namespace fesd_ros

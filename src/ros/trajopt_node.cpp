@@ -322,13 +322,15 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
     std::lock_guard<std::mutex> lock(last_solution_mutex_);
     last_solution_ = std::make_shared<const fesd::SceneOutcome>(outcome);
   }
-  publish(task, solution);
+  publish(task, solution, outcome.planned_legs, outcome.planned_transits);
 }
 
-void TrajoptNode::publish(const fesd::SceneTask& task, const fesd_trajopt::Solution& solution) {
+void TrajoptNode::publish(const fesd::SceneTask& task, const fesd_trajopt::Solution& solution,
+                          const std::vector<fesd::PushLeg>& legs,
+                          const std::vector<fesd::Transit>& transits) {
   std::lock_guard<std::mutex> lock(publish_mutex_);
   solution_publisher_.publish(solution);
-  marker_publisher_.publish(sceneMarkers(task, solution, config_.frame_id));
+  marker_publisher_.publish(sceneMarkers(task, solution, config_.frame_id, legs, transits));
   // A robot's root is the scene's origin: robot_state_publisher's TF tree hangs from it.
   const std::string root = task.scene.hasRobot() ? task.scene.robot().root_link : "";
   if (!root.empty() && root != config_.frame_id) {

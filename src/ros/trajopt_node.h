@@ -45,7 +45,11 @@ class TrajoptNode {
             fesd_trajopt::PlanTrajectoryResult& answer);
   void handlePlan(const fesd_trajopt::PlanRequest& request, const fesd::SolveMonitor* monitor,
                   fesd_trajopt::PlanTrajectoryResult& answer);
-  void publish(const fesd::SceneTask& task, const fesd_trajopt::Solution& solution);
+  /// The answer, its markers (with the push plan's legs and transits) and, with a robot, its
+  /// root frame.
+  void publish(const fesd::SceneTask& task, const fesd_trajopt::Solution& solution,
+               const std::vector<fesd::PushLeg>& legs = {},
+               const std::vector<fesd::Transit>& transits = {});
   void publishPaths(const fesd_trajopt::Solution& solution);
   void handleSimulate(const fesd_trajopt::Simulate::Request& request,
                       fesd_trajopt::Simulate::Response& response);

@@ -1,7 +1,7 @@
 // A fast seeded subset of the planning sweep (fesd_bench planning-sweep): cluttered scenes of a
-// pusher and a puck among passive discs and obstacles, solved as the node solves them, each
-// target met without penetration, and the plan standing for the physics with every pair in
-// reach.
+// pusher and a puck among passive discs and obstacles, and pushes round posts on the push line
+// (in legs, from a guess of small residual), solved as the node solves them, each target met
+// without penetration, and the plan standing for the physics with every pair in reach.
 #include <string>
 
 #include <gtest/gtest.h>
@@ -37,5 +37,31 @@ TEST_P(ClutteredScenes, ReachTheTargetWithoutPenetrationAndVerify) {
 // The pusher-and-puck scenes among the sweep's first seeds (the showcase-based ones take
 // seconds each; the sweep runs them).
 INSTANTIATE_TEST_SUITE_P(Seeds, ClutteredScenes, ::testing::Values(0u, 3u, 4u, 6u, 10u));
+
+class PostScenes : public ::testing::TestWithParam<unsigned> {};
+
+TEST_P(PostScenes, GoRoundThePostsInLegsReachTheTargetAndVerify) {
+  const ps::PlanningScene scene = ps::postsScene(GetParam());
+  fesd::SceneSolveOptions options;
+  options.ocp.discretization.num_elements = 3;
+  fesd::SimulationOptions fine;
+  fine.discretization.num_stages = 3;
+  fine.discretization.num_elements = 6;
+  const ps::PlanningRun run = ps::runScene(scene, options, fine);
+  ASSERT_TRUE(run.outcome.solved()) << scene.description;
+  // A post on the line: the plan goes round it in more than one leg.
+  EXPECT_GE(run.outcome.planned_legs.size(), 2u) << scene.description;
+  EXPECT_LT(run.outcome.guess_residual, 0.3) << scene.description;
+  ASSERT_EQ(run.outcome.status, fesd::SolveStatus::kSuccess)
+      << scene.description << ": " << run.outcome.message;
+  EXPECT_LT(run.target_distance, 1e-3) << scene.description;
+  EXPECT_GT(run.plan_gap, -1e-6) << scene.description;
+  ASSERT_EQ(run.verification.status, fesd::SolveStatus::kSuccess) << scene.description;
+  EXPECT_GT(run.verification_gap, -1e-6) << scene.description;
+  EXPECT_LT(run.verification.error, 1e-2) << scene.description;
+}
+
+// One pusher (0, 1, 4) and a helper beside it (2, 11), posts on the line in each.
+INSTANTIATE_TEST_SUITE_P(Seeds, PostScenes, ::testing::Values(0u, 1u, 2u, 4u, 11u));
 
 }  // namespace

@@ -139,6 +139,29 @@ TEST(PathsAround, PiecesMustBePassableInTheirDirectionOfTravel) {
   EXPECT_EQ(path[1], Eigen::Vector2d(1, 2));
 }
 
+TEST(PathsAround, ARoundedCornerIsAnArcWithContinuousTangents) {
+  // A right angle at (2, 0) rounded with radius 0.5: length 4 - 2 * 0.5 + pi / 4.
+  const fesd::RoundedPath path(
+      {Eigen::Vector2d(0, 0), Eigen::Vector2d(2, 0), Eigen::Vector2d(2, 2)}, 0.5);
+  EXPECT_NEAR(path.length(), 3.0 + M_PI / 4.0, 1e-12);
+  EXPECT_LT((path.at(1.0) - Eigen::Vector2d(1, 0)).norm(), 1e-12);
+  EXPECT_LT((path.at(path.length()) - Eigen::Vector2d(2, 2)).norm(), 1e-12);
+  // The arc's middle lies 0.5 from the centre (1.5, 0.5), on the diagonal.
+  const Eigen::Vector2d middle = path.at(1.5 + M_PI / 8.0);
+  EXPECT_NEAR((middle - Eigen::Vector2d(1.5, 0.5)).norm(), 0.5, 1e-12);
+  EXPECT_NEAR(middle.x() - 1.5, 0.5 / std::sqrt(2.0), 1e-12);
+  for (double s = 0.01; s < path.length(); s += 0.01) {
+    EXPECT_LT((path.tangent(s) - path.tangent(s - 0.01)).norm(), 0.021) << "s = " << s;
+    const Eigen::Vector2d slope = (path.at(s + 1e-6) - path.at(s - 1e-6)) / 2e-6;
+    EXPECT_LT((slope - path.tangent(s)).norm(), 1e-6) << "s = " << s;
+  }
+  // Pieces too short for the radius get a smaller arc: the corners' arcs do not overlap.
+  const fesd::RoundedPath tight({Eigen::Vector2d(0, 0), Eigen::Vector2d(0.2, 0),
+                                 Eigen::Vector2d(0.2, 0.2), Eigen::Vector2d(0, 0.2)},
+                                1.0);
+  EXPECT_NEAR(tight.length(), 0.2 + 0.1 * M_PI, 1e-12);  // two arcs of radius 0.1
+}
+
 TEST(PathsAround, PointsAlongAPolylineGoByArcLength) {
   const std::vector<Eigen::VectorXd> path{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0),
                                           Eigen::Vector2d(1, 3)};

@@ -1,8 +1,8 @@
 // The push plan (planPushes), the first guess of scene OCPs: pushing poses, phase times, a
 // guess whose states, forces and controls are consistent with the scene's dynamics (its
-// residual in the OCP's equations), legs round a post with the pusher turning round the puck, a
-// pusher that must go round the puck first, a push along a wall, and what it does with bodies in
-// the way (shoves them as a chain).
+// residual in the OCP's equations), legs round a post with the pusher turning behind the puck,
+// a pusher that must go round the puck first, a push along a wall, and what it does with bodies
+// in the way (shoves them as a chain).
 #include <algorithm>
 #include <cmath>
 
@@ -175,6 +175,7 @@ TEST(PushPlan, AStraightPushIsOneLegWithAGuessThatSatisfiesTheDynamics) {
   const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();
   const fesd::PushPlan plan = fesd::planPushes(task, pairs);
   ASSERT_EQ(plan.legs.size(), 1u);
+  EXPECT_TRUE(plan.legs[0].through.empty());
   EXPECT_EQ(plan.legs[0].begin, plan.contact_time);
   EXPECT_EQ(plan.legs[0].end, plan.release_time);
   ASSERT_EQ(plan.legs[0].pushes.size(), 1u);
@@ -188,28 +189,27 @@ TEST(PushPlan, AStraightPushIsOneLegWithAGuessThatSatisfiesTheDynamics) {
   EXPECT_LT(guessResidual(task, pairs, plan), 0.02);
 }
 
-TEST(PushPlan, APostInTheWayIsGoneRoundInStraightLegsWithThePusherTurningRoundThePuck) {
+TEST(PushPlan, APostInTheWayIsGoneRoundInLegsWithThePusherTurningBehindThePuck) {
   fesd::SceneTask task = fesd_test::pushAlongX();
   task.scene.obstacles() = {{"post", 0.4, Eigen::Vector2d(1.5, 0.0)}};  // dead ahead
   const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();
   const fesd::PushPlan plan = fesd::planPushes(task, pairs);
-  ASSERT_GE(plan.legs.size(), 2u);
-  EXPECT_LE(plan.legs.size(), 3u);
-  EXPECT_EQ(plan.legs.front().from, task.scene.bodies()[1].position);
-  EXPECT_EQ(plan.legs.back().to, task.bodies[1].target);
+  ASSERT_EQ(plan.legs.size(), 1u);
+  const fesd::PushLeg& push = plan.legs[0];
+  ASSERT_FALSE(push.through.empty());
+  EXPECT_LE(push.through.size(), 2u);
+  EXPECT_DOUBLE_EQ(push.turn_radius, 1.0);  // the puck's and the pusher's radii
+  // The legs keep the post's and the puck's radii (0.9) from the post, the pusher straight
+  // behind the first leg.
   const Eigen::Vector2d post(1.5, 0.0);
-  for (size_t j = 0; j < plan.legs.size(); ++j) {
-    const fesd::PushLeg& leg = plan.legs[j];
-    // Room beside the puck for the pusher: the post's radius plus the larger radius, 0.5.
-    EXPECT_GE(fesd::segmentDistance(post, leg.from, leg.to), 0.9 - 1e-9) << "leg " << j;
-    ASSERT_EQ(leg.pushes.size(), 1u);
-    const Eigen::VectorXd direction = (leg.to - leg.from).normalized();
-    EXPECT_LT((leg.pushes[0].offset + direction).norm(), 1e-12) << "straight behind, leg " << j;
-    if (j > 0) {
-      EXPECT_EQ(leg.from, plan.legs[j - 1].to);
-      EXPECT_GT(leg.begin, plan.legs[j - 1].end);  // the pusher turns in between
-    }
+  std::vector<Eigen::VectorXd> corners{push.from};
+  corners.insert(corners.end(), push.through.begin(), push.through.end());
+  corners.push_back(push.to);
+  for (size_t j = 1; j < corners.size(); ++j) {
+    EXPECT_GE(fesd::segmentDistance(post, corners[j - 1], corners[j]), 0.9 - 1e-9) << "leg " << j;
   }
+  const Eigen::VectorXd first = (corners[1] - corners[0]).normalized();
+  EXPECT_LT((push.pushes[0].offset + first).norm(), 1e-12);
   const fesd::ContactPair puck_post{1, fesd::ContactPair::Kind::kObstacle, 0};
   const fesd::ContactPair pusher_post{0, fesd::ContactPair::Kind::kObstacle, 0};
   const fesd::ContactPair pusher_puck{0, fesd::ContactPair::Kind::kBody, 1};
@@ -218,6 +218,9 @@ TEST(PushPlan, APostInTheWayIsGoneRoundInStraightLegsWithThePusherTurningRoundTh
     EXPECT_GT(task.scene.pairGap(puck_post, x), 0.0) << "t = " << t;
     EXPECT_GT(task.scene.pairGap(pusher_post, x), 0.0) << "t = " << t;
     EXPECT_GT(task.scene.pairGap(pusher_puck, x), -1e-9) << "t = " << t;
+    if (t > plan.contact_time && t < plan.release_time) {  // in contact all along the push
+      EXPECT_LT(task.scene.pairGap(pusher_puck, x), 1e-9) << "t = " << t;
+    }
   }
   EXPECT_LT((plan.guess.state(plan.release_time).segment<2>(2) - Eigen::Vector2d(3, 0)).norm(),
             1e-12);
@@ -290,14 +293,16 @@ TEST(PushPlan, ATargetOutOfTimeIsPushedAsFarAsTimeAllowsWithinTheSpeedBounds) {
   EXPECT_NEAR(plan.release_time, 2.0, 1e-5);
   for (const Eigen::VectorXd& u : plan.guess.controls)
     EXPECT_LE(u.cwiseAbs().maxCoeff(), 2.0 + 1e-4);
-  // A second pusher that cannot move (speed bound 0) leaves the push to the first.
+  // A second pusher that cannot move (speed bound 0) leaves the push to the first: placed beside
+  // it, tilted, its force is not needed and it is not kept.
   fesd::SceneTask helped = task;
   helped.bodies[1].target = Eigen::Vector2d(0.8, 0.0);
   helped.scene.bodies().push_back({"idle", 0.5, Eigen::Vector2d(-3.0, 3.0), true});
   helped.bodies.push_back(fesd::BodyTask{});
   helped.bodies.back().max_speed = 0.0;
   const fesd::PushPlan both = fesd::planPushes(helped, helped.scene.allPairs());
-  ASSERT_EQ(both.pushes.size(), 2u);
+  ASSERT_EQ(both.pushes.size(), 1u);
+  EXPECT_EQ(both.pushes[0].pusher, 0);
   EXPECT_LT(both.contact_time, both.release_time);
   EXPECT_LT((both.guess.state(helped.horizon).segment<2>(2) - Eigen::Vector2d(0.8, 0.0)).norm(),
             1e-6);

@@ -55,11 +55,13 @@ std::vector<double> guessSteps(const NlpAssembly& nlp, const CollocationGrid& gr
                                const std::vector<double>& switch_times);
 
 /// The states of `guess` at the stage and end points of its grid (guessSteps, the stages at the
-/// tableau's nodes), those steps and the guess's controls (guessControls). Returns each
-/// element's start time.
-std::vector<double> guessGridPoints(const NlpAssembly& nlp, const CollocationGrid& grid,
-                                    const ButcherTableau& tableau, double h0, int nx, int nu,
-                                    const TrajectoryGuess& guess, std::vector<double>& x);
+/// tableau's nodes), those steps and the guess's controls (guessControls). Returns the stage
+/// points' times, per element.
+std::vector<std::vector<double>> guessGridPoints(const NlpAssembly& nlp,
+                                                 const CollocationGrid& grid,
+                                                 const ButcherTableau& tableau, double h0, int nx,
+                                                 int nu, const TrajectoryGuess& guess,
+                                                 std::vector<double>& x);
 /// sum of the steps of each control interval = its length.
 void addIntervalLengthRows(NlpAssembly& nlp, const CollocationGrid& grid, const OcpDefinition& ocp);
 /// rho * sigma * ((h_n - h_{n-1}) / h0)^2 in the objective (a term vanishing with sigma) that

@@ -35,6 +35,10 @@ PlanningScene scene(const std::string& family, unsigned seed);
 /// anywhere), one third fixed obstacles, which keep clear of the pushed body's corridor, its
 /// target and the stretch beyond it, so the target stays reachable by pushing through.
 PlanningScene clutteredScene(unsigned seed);
+/// A pusher and a puck (one pusher in two scenes, a helper beside it in the others) with 3-7
+/// posts, one or two on the push line, a pusher's width apart and clear of the start and the
+/// target, and up to 3 stones (passive discs) off the line: pushes that must go round.
+PlanningScene postsScene(unsigned seed);
 
 /// "push": a pusher and a puck of random radii (0.2 to 0.8) in the plane or (a third of them) in
 /// space, the puck's target 1 to 4 away in a random direction, the pusher starting beside or

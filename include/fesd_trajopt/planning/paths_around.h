@@ -42,6 +42,28 @@ constexpr int kTurningPointsPerDisc = 16;
 /// near it comes no nearer. Without a path that keeps out of them all: the straight segment.
 std::vector<Eigen::Vector2d> pathAround(const PathQuery& query);
 
+/// A polyline in the plane with its corners rounded by circular arcs of radius up to `radius`
+/// (smaller where a neighbouring piece is too short for it): position and unit tangent by arc
+/// length, both continuous, so that a pusher behind a body moving along it turns with it.
+class RoundedPath {
+ public:
+  RoundedPath(const std::vector<Eigen::Vector2d>& corners, double radius);
+  double length() const { return length_; }
+  Eigen::Vector2d at(double s) const;       ///< s clamped to [0, length]
+  Eigen::Vector2d tangent(double s) const;  ///< unit
+
+ private:
+  struct Piece {
+    double begin, length;
+    Eigen::Vector2d start, direction;  ///< a straight piece
+    Eigen::Vector2d centre;            ///< an arc: radius > 0
+    double radius = 0.0, angle = 0.0, sweep = 0.0;
+  };
+  const Piece& pieceAt(double& s) const;
+  std::vector<Piece> pieces_;
+  double length_ = 0.0;
+};
+
 /// The length of a polyline (in any dimension).
 double pathLength(const std::vector<Eigen::VectorXd>& path);
 

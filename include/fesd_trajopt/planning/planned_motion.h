@@ -1,20 +1,23 @@
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include <Eigen/Dense>
 
+#include "fesd_trajopt/planning/paths_around.h"
 #include "fesd_trajopt/planning/push_plan.h"
 #include "fesd_trajopt/scene/scene_task.h"
 
 namespace fesd {
 
 /// The motion of every body of a push plan as functions of time, and the forces that move them:
-/// pushed bodies along their legs, actuated bodies along their transits or behind the body they
-/// push, the other passive bodies of `pairs` shoved by what pushes into them as the projection
-/// would (simulated in steps in which nothing moves farther than 5 % of the smallest radius).
-/// Actuated bodies shove the simulated bodies they meet, step out of the other passive bodies
-/// they do not push, obstacles and walls, and stay in their workspaces.
+/// pushed bodies along their pushes (round the corners of a push in legs), actuated bodies along
+/// their transits or behind the body they push (turning with it), the other passive bodies of
+/// `pairs` shoved by what pushes into them as the projection would (simulated in steps in which
+/// nothing moves farther than 5 % of the smallest radius). Actuated bodies shove the simulated
+/// bodies they meet, step out of the other passive bodies they do not push, obstacles and walls,
+/// and stay in their workspaces.
 class PlannedMotion {
  public:
   PlannedMotion(const SceneTask& task, const std::vector<ContactPair>& pairs,
@@ -62,6 +65,7 @@ class PlannedMotion {
   SceneTask task_;
   std::vector<ContactPair> pairs_;
   std::vector<PushLeg> legs_;
+  std::vector<std::shared_ptr<const RoundedPath>> rounded_;  ///< per leg with turns, else null
   std::vector<Transit> transits_;
   std::vector<std::vector<Piece>> pieces_;  ///< per body, in order of time
   std::vector<double> breaks_;              ///< where any piece begins or ends, sorted

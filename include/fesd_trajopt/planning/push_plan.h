@@ -16,18 +16,25 @@ struct PushAssignment {
   Eigen::VectorXd offset;
 };
 
-/// One straight push of a body: from `from` to `to` during [begin, end], its pushers at the
-/// offsets of `pushes` (the same pushers, in the same order, in every leg of the body).
+/// The push of a body from `from` to `to` during [begin, end]: straight, or along turning points
+/// `through` with the corners rounded (RoundedPath, radius `turn_radius`), at constant speed. Its
+/// pushers sit at the offsets of `pushes` at the start and turn with the path's tangent.
 struct PushLeg {
   int pushed;
   Eigen::VectorXd from, to;
   double begin, end;
   std::vector<PushAssignment> pushes;
+  std::vector<Eigen::VectorXd> through;
+  double turn_radius = 0.0;
 };
 
-/// An actuated body's path that touches nothing it does not push: to its first pushing pose
-/// (the approach), round the pushed body to its pose for the next leg, to its own target after
-/// the push, or, without a push, from its start to its target. Traversed at constant speed.
+/// Where pusher k of a push sits relative to the pushed body at the push's end: its offset turned
+/// as the path turns from its first direction to its last.
+Eigen::VectorXd endOffset(const PushLeg& leg, size_t k);
+
+/// An actuated body's path that touches nothing it does not push: to its pushing pose (the
+/// approach), to its own target after the push, or, without a push, from its start to its
+/// target. Traversed at constant speed.
 struct Transit {
   int body;
   double begin, end;
@@ -35,16 +42,16 @@ struct Transit {
 };
 
 /// A first guess for a scene task's OCP from a plan of contacts in three phases shared by all
-/// bodies: approach (each pusher goes to its first pushing pose), push (every passive body with
-/// a target is pushed to it in straight legs; between legs it rests while its pushers go round
-/// it to their poses for the next leg), return (the pushers go to their own targets). Phase and
-/// leg lengths are those of least control effort for this motion (tau ~ the root of the summed
-/// squared displacements of control). Bodies without a push go to their targets over the
-/// horizon, or stay.
+/// bodies: approach (each pusher goes to its pushing pose), push (every passive body with a
+/// target is pushed to it: straight, or round obstacles in straight legs joined by turns in which
+/// its pushers turn round it), return (the pushers go to their own targets). Phase lengths are
+/// those of least control effort for this motion (tau ~ the root of the summed squared
+/// displacements of control). Bodies without a push go to their targets over the horizon, or
+/// stay.
 ///
-/// What is in the way: in the plane, a pushed body's legs go round the obstacles with room for
-/// its pushers beside it and, at each turn, round it (pathAround), and stay clear of the walls;
-/// every transit goes round the obstacles and passive bodies. The passive bodies without a
+/// What is in the way: in the plane, a pushed body's legs go round the obstacles with its pusher
+/// clear of them behind it (pathAround); every transit goes round the obstacles and the bodies at
+/// rest. The passive bodies without a
 /// target move only when pushed, as the projected dynamics move them: whatever pushes into them
 /// shoves them along the contact normal, and they shove others in turn (chains), simulated in
 /// small time steps. In space, legs and transits are straight.
@@ -74,13 +81,11 @@ struct PushPlan {
 };
 
 /// Pushers: each actuated body pushes at most one passive body with a target, through a body
-/// pair of `pairs`. Its pushing pose in a leg is the one most directly behind the leg's direction
-/// (tilted in steps of 1 degree up to 89) that keeps it inside its workspace bounds at the
-/// start and end of the leg and apart from the pushers placed before it. A body pushed in
-/// several legs keeps the pushers of its first; when one of them finds no pose in a later leg,
-/// the body is pushed straight instead. Only the pairs in
-/// `pairs` touch in the plan, and the guess's multipliers are theirs, in that order. A target
-/// no placement of pushers can push to is replaced in the plan by the nearest end one can.
+/// pair of `pairs`. Its pushing pose is the one most directly behind the push (tilted in steps of
+/// 1 degree up to 89) that keeps it inside its workspace bounds at the start and end of the push
+/// and apart from the pushers placed before it; only pushers whose force the push needs stay. Only
+/// the pairs in `pairs` touch in the plan, and the guess's multipliers are theirs, in that order. A
+/// target no placement of pushers can push to is replaced in the plan by the nearest end one can.
 PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs);
 
 }  // namespace fesd

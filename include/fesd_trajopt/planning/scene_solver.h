@@ -10,6 +10,7 @@
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
 #include "fesd_trajopt/planning/accuracy_ladder.h"
+#include "fesd_trajopt/planning/push_plan.h"
 #include "fesd_trajopt/scene/scene_task.h"
 #include "fesd_trajopt/scene/warm_start.h"
 
@@ -25,6 +26,9 @@ struct SceneOutcome {
   std::vector<ContactPair> modelled;    ///< the last NLP's constraints, in order
   std::vector<int> moving_bodies;       ///< the bodies with states (MovingPart::bodies)
   int pusher_sphere = -1;  ///< the robot sphere the first guess pushes with (planRobotGuess)
+  /// The first guess's push plan of free bodies (planPushes): what it foresaw, for display.
+  std::vector<PushLeg> planned_legs;
+  std::vector<Transit> planned_transits;
   SolveStatus status = SolveStatus::kSolverError;
   std::string message;
   OcpStart start = OcpStart::kConstant;  ///< the solve's start (not for simulations)
