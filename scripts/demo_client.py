@@ -3,12 +3,15 @@
 
 The Python usage example: an empty request solves the default scene; see --help for a few
 overrides. Usage: rosrun fesd_trajopt demo_client.py [--intervals N] [--elements N] [--verify]
+[--obstacle X Y R ...]
 """
 import argparse
 import sys
 
 import rospy
-from fesd_trajopt.msg import PlanRequest, Solution, SwitchEvent
+from geometry_msgs.msg import Point
+
+from fesd_trajopt.msg import Obstacle, PlanRequest, Solution, SwitchEvent
 from fesd_trajopt.srv import SolveTrajectory
 
 # Status code -> name, from Solution.msg's constants.
@@ -22,6 +25,8 @@ def main():
     parser.add_argument("--intervals", type=int, help="control intervals (default: configured)")
     parser.add_argument("--elements", type=int, help="finite elements per interval")
     parser.add_argument("--verify", action="store_true", help="re-simulate on a finer grid")
+    parser.add_argument("--obstacle", type=float, nargs=3, action="append", default=[],
+                        metavar=("X", "Y", "R"), help="a fixed disc added to the scene")
     args = parser.parse_args(rospy.myargv()[1:])
     rospy.init_node("fesd_trajopt_demo_client", anonymous=True)
     rospy.wait_for_service(args.service, timeout=60.0)
@@ -32,6 +37,9 @@ def main():
     if args.elements:
         request.has_num_elements, request.num_elements = True, args.elements
     request.verify = args.verify
+    for k, (x, y, radius) in enumerate(args.obstacle):
+        request.obstacles.append(Obstacle(name="post_%d" % k, radius=radius,
+                                          position=Point(x=x, y=y)))
     started = rospy.Time.now()
     response = solve(request)
     round_trip = (rospy.Time.now() - started).to_sec()
@@ -53,6 +61,8 @@ def main():
     print("  %d Ipopt iterations in %d homotopy steps, residual %.1e, objective %.6g" % (
         stats.ipopt_iterations, stats.homotopy_steps, stats.complementarity_residual,
         stats.objective))
+    print("  first guess (%s): residual %.3g in the NLP's equations" % (
+        stats.start, stats.guess_residual))
     print("  solve %.2f s (Ipopt %.2f s, evaluations %.2f s); round trip %.2f s" % (
         stats.wall_time, stats.ipopt_time, stats.evaluation_time, round_trip))
     if solution.verified:

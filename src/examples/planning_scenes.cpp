@@ -221,7 +221,8 @@ PlanningScene postsScene(unsigned seed) {
   }
   std::ostringstream what;
   what << (two_pushers ? "two pushers" : "one pusher") << ", " << task.scene.obstacles().size()
-       << " posts (" << on_the_line << " on the line), " << stones << " stones";
+       << " posts (" << std::min(on_the_line, static_cast<int>(task.scene.obstacles().size()))
+       << " on the line), " << stones << " stones";
   return described("posts", seed, std::move(task), 1, true, what.str());
 }
 
