@@ -13,8 +13,8 @@
 #include "commands.h"
 #include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
-#include "fesd_trajopt/scene/moving_part.h"
 #include "fesd_trajopt/planning/scene_solver.h"
+#include "fesd_trajopt/scene/moving_part.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 
 namespace fesd_bench {

@@ -339,6 +339,24 @@ class NodeServices(unittest.TestCase):
             self.assertIn(expected, namespaces)
         self.assertTrue(all(m.header.frame_id == "world" for m in markers.markers))
 
+    def test_the_push_plan_is_drawn_and_its_guess_residual_reported(self):
+        request = PlanRequest()  # the default grid: the residual's scale is the grid's
+        request.obstacles = [Obstacle(name="post", radius=0.5, position=Point(x=6.0, y=6.0))]
+        response = self.solve(request)
+        self.assertEqual(response.status, Solution.SUCCESS, response.message)
+        residual = response.solution.statistics.guess_residual
+        self.assertTrue(0.0 < residual < 1.0, residual)  # the default scene's plan: about 0.4
+        markers = rospy.wait_for_message("/fesd_trajopt/markers", MarkerArray, timeout=30.0)
+        legs = [m for m in markers.markers if m.ns == "plan_legs"]
+        self.assertEqual(len(legs), 1)  # the object's push: from its start to its target
+        self.assertAlmostEqual(legs[0].points[0].y, 0.0, places=9)
+        self.assertAlmostEqual(legs[0].points[1].y, 10.0, places=9)
+        transits = [m for m in markers.markers if m.ns == "plan_transits"]
+        self.assertEqual(len(transits), 4)  # each actuator's approach and return
+        for transit in transits:
+            self.assertGreater(len(transit.points), 0)
+            self.assertEqual(len(transit.points) % 2, 0)  # dashes: pairs of points
+
     def test_concurrent_calls_are_both_answered_correctly(self):
         requests = [small_default(10), small_default(12)]
         sequential = [self.solve(r) for r in requests]

@@ -104,74 +104,22 @@ void guessControls(const NlpAssembly& nlp, const CollocationGrid& grid, int nu,
   }
 }
 
-std::vector<double> guessSteps(const NlpAssembly& nlp, const CollocationGrid& grid, double h0,
-                               const std::vector<double>& switch_times) {
-  const int per_interval = grid.elements_per_interval;
-  std::vector<double> steps(grid.numElements(), h0);
-  for (int k = 0; k * per_interval < grid.numElements(); ++k) {
-    const double begin = k * per_interval * h0, end = (k + 1) * per_interval * h0;
-    std::vector<double> cuts{begin};
-    for (double t : switch_times) {
-      if (static_cast<int>(cuts.size()) == per_interval) break;
-      if (t >= cuts.back() + 0.25 * h0 && t <= end - 0.25 * h0) cuts.push_back(t);
-    }
-    if (cuts.size() == 1) continue;
-    cuts.push_back(end);
-    const int segments = static_cast<int>(cuts.size()) - 1;
-    std::vector<int> counts(segments, 1);
-    for (int extra = per_interval - segments; extra > 0; --extra) {
-      int widest = 0;
-      for (int j = 1; j < segments; ++j) {
-        if ((cuts[j + 1] - cuts[j]) / counts[j] >
-            (cuts[widest + 1] - cuts[widest]) / counts[widest])
-          widest = j;
-      }
-      ++counts[widest];
-    }
-    std::vector<double> interval;
-    for (int j = 0; j < segments; ++j) {
-      for (int n = 0; n < counts[j]; ++n) interval.push_back((cuts[j + 1] - cuts[j]) / counts[j]);
-    }
-    bool within = true;
-    for (int n = 0; n < per_interval; ++n) {
-      const int step = grid.steps[k * per_interval + n];
-      within = within && interval[n] >= nlp.variableLower(step) &&
-               interval[n] <= nlp.variableUpper(step);
-    }
-    if (within) std::copy(interval.begin(), interval.end(), steps.begin() + k * per_interval);
-  }
-  return steps;
-}
-
-std::vector<std::vector<double>> guessGridPoints(const NlpAssembly& nlp,
-                                                 const CollocationGrid& grid,
-                                                 const ButcherTableau& tableau, double h0, int nx,
-                                                 int nu, const TrajectoryGuess& guess,
-                                                 std::vector<double>& x) {
+void guessGridPoints(const NlpAssembly& nlp, const CollocationGrid& grid,
+                     const ButcherTableau& tableau, double h0, int nx, int nu,
+                     const TrajectoryGuess& guess, std::vector<double>& x) {
   if (!guess.state) throw std::invalid_argument("TrajectoryGuess: no state");
   auto set_state = [&](int first, double time) {
     const Eigen::VectorXd state = guess.state(time);
     if (state.size() != nx) throw std::invalid_argument("TrajectoryGuess: state of wrong size");
     std::copy(state.data(), state.data() + nx, x.begin() + first);
   };
-  const std::vector<double> steps = guessSteps(nlp, grid, h0, guess.switch_times);
-  std::vector<std::vector<double>> stage_times(grid.numElements());
-  double start = 0.0;
   for (int e = 0; e < grid.numElements(); ++e) {
-    // Nominal elements at (e + c_i) h0 exactly; interval ends at their nominal times, as the
-    // interval-length rows demand.
-    const bool nominal = steps[e] == h0;
-    if (e % grid.elements_per_interval == 0 || nominal) start = e * h0;
-    for (int i = 0; i < tableau.stages; ++i) {
-      stage_times[e].push_back(nominal ? (e + tableau.c(i)) * h0 : start + tableau.c(i) * steps[e]);
-      set_state(grid.stage_states[e][i], stage_times[e].back());
-    }
-    start = nominal ? (e + 1) * h0 : start + steps[e];
-    set_state(grid.end_states[e], start);
-    x[grid.steps[e]] = steps[e];
+    for (int i = 0; i < tableau.stages; ++i)
+      set_state(grid.stage_states[e][i], (e + tableau.c(i)) * h0);
+    set_state(grid.end_states[e], (e + 1) * h0);
+    x[grid.steps[e]] = h0;
   }
   guessControls(nlp, grid, nu, guess.controls, x);
-  return stage_times;
 }
 
 void addIntervalLengthRows(NlpAssembly& nlp, const CollocationGrid& grid,

@@ -316,13 +316,13 @@ std::vector<double> PdsDiscretization::constantGuess(
 
 std::vector<double> PdsDiscretization::guessFrom(const TrajectoryGuess& guess) const {
   std::vector<double> x = nlp_.initialGuess();  // holds the start point's data
-  const std::vector<std::vector<double>> times =
-      guessGridPoints(nlp_, grid_, tableau_, nominal_step_, nx_, nu_, guess, x);
+  guessGridPoints(nlp_, grid_, tableau_, nominal_step_, nx_, nu_, guess, x);
   for (int e = 0; e < numElements(); ++e) {
     for (int i = 0; i < tableau_.stages; ++i) {
-      const double t = times[e][i];
       setPairGuess(stages_[e][i],
-                   guess.multipliers ? guess.multipliers(t) : Eigen::VectorXd::Zero(nc_), x);
+                   guess.multipliers ? guess.multipliers((e + tableau_.c(i)) * nominal_step_)
+                                     : Eigen::VectorXd::Zero(nc_),
+                   x);
     }
   }
   completeDependentVariables(x);

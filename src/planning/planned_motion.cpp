@@ -286,15 +286,13 @@ Eigen::VectorXd PlannedMotion::velocity(double t) const {
                  : Eigen::VectorXd((state(t + dt) - state(t)) / dt);
 }
 
-void PlannedMotion::shove(int b, Eigen::VectorXd& x, std::vector<bool>& pressed) const {
+void PlannedMotion::shove(int b, Eigen::VectorXd& x) const {
   const Scene& scene = task_.scene;
   const int dim = scene.dimension();
   Eigen::VectorXd p = x.segment(scene.stateIndex(b), dim);
   const double radius = scene.bodies()[b].radius;
-  for (size_t k = 0; k < pairs_.size(); ++k) {
-    const ContactPair& pair = pairs_[k];
+  for (const ContactPair& pair : pairs_) {
     if (!involves(pair, b)) continue;
-    const Eigen::VectorXd before = p;
     switch (pair.kind) {
       case ContactPair::Kind::kBody: {
         const int other = pair.body == b ? pair.other : pair.body;
@@ -314,7 +312,6 @@ void PlannedMotion::shove(int b, Eigen::VectorXd& x, std::vector<bool>& pressed)
         break;
       }
     }
-    if (p != before) pressed[k] = true;
   }
   x.segment(scene.stateIndex(b), dim) = p;
 }
@@ -344,40 +341,16 @@ void PlannedMotion::simulate() {
   sample_step_ = task_.horizon / steps;
   samples_.reserve(steps + 1);
   samples_.push_back(scene.initialState());
-  // Per pair, the steps in which it shoved: runs of them, gaps of under a coarse step closed,
-  // are its contacts.
-  std::vector<std::vector<int>> shoving(pairs_.size());
   for (int m = 1; m <= steps; ++m) {
     Eigen::VectorXd x = samples_.back();
     placePlannedBodies(m * sample_step_, x);
-    std::vector<bool> pressed(pairs_.size(), false);
     for (int sweep = 0; sweep < kProjectionSweeps; ++sweep) {
       for (int b = 0; b < static_cast<int>(scene.bodies().size()); ++b) {
-        if (simulated_[b]) shove(b, x, pressed);
+        if (simulated_[b]) shove(b, x);
       }
-    }
-    for (size_t k = 0; k < pairs_.size(); ++k) {
-      if (pressed[k]) shoving[k].push_back(m);
     }
     samples_.push_back(x);
   }
-  for (const std::vector<int>& steps_pressed : shoving) {
-    for (size_t i = 0; i < steps_pressed.size(); ++i) {
-      if (i == 0 || steps_pressed[i] - steps_pressed[i - 1] > refinement) {
-        shove_onsets_.push_back((steps_pressed[i] - 1) * sample_step_);
-      }
-    }
-  }
-}
-
-std::vector<double> PlannedMotion::contactOnsets() const {
-  std::vector<double> times = shove_onsets_;
-  for (const PushLeg& leg : legs_) {
-    if (leg.begin > 0.0 && leg.begin < task_.horizon) times.push_back(leg.begin);
-  }
-  std::sort(times.begin(), times.end());
-  times.erase(std::unique(times.begin(), times.end()), times.end());
-  return times;
 }
 
 }  // namespace fesd

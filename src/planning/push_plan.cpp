@@ -17,6 +17,10 @@ namespace {
 /// that much more room: within the lazy pairs' margin, so that the pairs a plan passes are
 /// modelled from the first round.
 constexpr double kClearance = 0.05;
+/// A transit keeps out of the body it arrives at or leaves only to this fraction of the contact
+/// distance: a path that just grazes the contact circle on its way in is projected onto it
+/// (PlannedMotion), as before; one that would cross the body goes round it.
+constexpr double kTouchedFraction = 0.8;
 
 bool hasGoal(const BodyTask& t) {
   return t.target.size() && t.target_weight > 0.0;
@@ -65,7 +69,8 @@ std::vector<Eigen::VectorXd> transitPath(const SceneTask& task, int body,
   for (size_t b = 0; b < scene.bodies().size(); ++b) {
     if (static_cast<int>(b) == body || rest[b].size() == 0) continue;
     const double contact = scene.bodies()[b].radius + radius;
-    const double distance = static_cast<int>(b) == touched ? contact : (1.0 + kClearance) * contact;
+    const double distance =
+        static_cast<int>(b) == touched ? kTouchedFraction * contact : (1.0 + kClearance) * contact;
     query.keep_out.push_back({rest[b], distance, (1.0 + kClearance) * contact});
   }
   query.allowed = roomFor(task, body, (1.0 + kClearance) * radius);
@@ -322,7 +327,6 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
       std::make_shared<const PlannedMotion>(planned, pairs, plan.legs, plan.transits);
   plan.guess.state = [motion](double t) { return motion->state(t); };
   plan.guess.multipliers = [motion](double t) { return motion->multipliers(t); };
-  plan.guess.switch_times = motion->contactOnsets();
   for (int k = 0; k < task.num_intervals; ++k) {
     plan.guess.controls.push_back(motion->meanControl(task.horizon * k / task.num_intervals,
                                                       task.horizon * (k + 1) / task.num_intervals));

@@ -327,7 +327,8 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
   }
   for (const fesd::Transit& transit : transits) {
     // Dashed: every other piece of the path cut in tenths of a pusher's radius.
-    visualization_msgs::Marker dashes = marker("plan_transits", visualization_msgs::Marker::LINE_LIST);
+    visualization_msgs::Marker dashes =
+        marker("plan_transits", visualization_msgs::Marker::LINE_LIST);
     const double length = fesd::pathLength(transit.path);
     const int pieces = 2 * std::max(1, static_cast<int>(length / 0.25));
     for (int k = 0; k < pieces; k += 2) {

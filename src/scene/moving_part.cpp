@@ -116,7 +116,6 @@ TrajectoryGuess partGuess(const SceneTask& full, const MovingPart& part,
                           const TrajectoryGuess& guess, const std::vector<ContactPair>& pairs) {
   TrajectoryGuess result;
   result.controls = guess.controls;
-  result.switch_times = guess.switch_times;
   result.state = [full, part, state = guess.state](double t) {
     return partState(full, part, state(t));
   };

@@ -12,8 +12,8 @@
 #include "fesd_trajopt/examples/push_scenes.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
-#include "fesd_trajopt/scene/moving_part.h"
 #include "fesd_trajopt/planning/scene_solver.h"
+#include "fesd_trajopt/scene/moving_part.h"
 
 namespace {
 

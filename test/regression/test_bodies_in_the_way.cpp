@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "fesd_trajopt/examples/planning_scenes.h"
-#include "fesd_trajopt/scene/pair_check.h"
 #include "fesd_trajopt/planning/scene_solver.h"
+#include "fesd_trajopt/scene/pair_check.h"
 #include "support/scene_tasks.h"
 
 namespace {

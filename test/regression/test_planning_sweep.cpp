@@ -12,17 +12,20 @@ namespace {
 
 namespace ps = fesd::planning_scenes;
 
-class ClutteredScenes : public ::testing::TestWithParam<unsigned> {};
-
-TEST_P(ClutteredScenes, ReachTheTargetWithoutPenetrationAndVerify) {
-  const ps::PlanningScene scene = ps::clutteredScene(GetParam());
+/// A scene solved as the sweep solves it (3 elements), verified on a finer grid (3 stages, 6
+/// elements) with every pair in reach.
+ps::PlanningRun solveAndVerify(const ps::PlanningScene& scene) {
   fesd::SceneSolveOptions options;
   options.ocp.discretization.num_elements = 3;
   fesd::SimulationOptions fine;
   fine.discretization.num_stages = 3;
   fine.discretization.num_elements = 6;
-  const ps::PlanningRun run = ps::runScene(scene, options, fine);
-  ASSERT_TRUE(run.outcome.solved()) << scene.description;
+  return ps::runScene(scene, options, fine);
+}
+
+/// SUCCESS with the target met, no penetration in the plan nor in its verification, which
+/// stands for the physics to 1e-2.
+void expectReachedAndVerified(const ps::PlanningScene& scene, const ps::PlanningRun& run) {
   ASSERT_EQ(run.outcome.status, fesd::SolveStatus::kSuccess)
       << scene.description << ": " << run.outcome.message;
   EXPECT_LT(run.target_distance, 1e-3) << scene.description;
@@ -30,6 +33,15 @@ TEST_P(ClutteredScenes, ReachTheTargetWithoutPenetrationAndVerify) {
   ASSERT_EQ(run.verification.status, fesd::SolveStatus::kSuccess) << scene.description;
   EXPECT_GT(run.verification_gap, -1e-6) << scene.description;
   EXPECT_LT(run.verification.error, 1e-2) << scene.description;
+}
+
+class ClutteredScenes : public ::testing::TestWithParam<unsigned> {};
+
+TEST_P(ClutteredScenes, ReachTheTargetWithoutPenetrationAndVerify) {
+  const ps::PlanningScene scene = ps::clutteredScene(GetParam());
+  const ps::PlanningRun run = solveAndVerify(scene);
+  ASSERT_TRUE(run.outcome.solved()) << scene.description;
+  expectReachedAndVerified(scene, run);
   // Lazy pairs: far fewer modelled than in reach, every checked pair beyond the margin.
   EXPECT_LT(run.outcome.modelledPairs(), run.outcome.checkedPairs()) << scene.description;
 }
@@ -42,24 +54,13 @@ class PostScenes : public ::testing::TestWithParam<unsigned> {};
 
 TEST_P(PostScenes, GoRoundThePostsInLegsReachTheTargetAndVerify) {
   const ps::PlanningScene scene = ps::postsScene(GetParam());
-  fesd::SceneSolveOptions options;
-  options.ocp.discretization.num_elements = 3;
-  fesd::SimulationOptions fine;
-  fine.discretization.num_stages = 3;
-  fine.discretization.num_elements = 6;
-  const ps::PlanningRun run = ps::runScene(scene, options, fine);
+  const ps::PlanningRun run = solveAndVerify(scene);
   ASSERT_TRUE(run.outcome.solved()) << scene.description;
   // A post on the line: the plan goes round it in legs joined by turns.
   ASSERT_EQ(run.outcome.planned_legs.size(), 1u) << scene.description;
   EXPECT_FALSE(run.outcome.planned_legs[0].through.empty()) << scene.description;
   EXPECT_LT(run.outcome.guess_residual, 0.3) << scene.description;
-  ASSERT_EQ(run.outcome.status, fesd::SolveStatus::kSuccess)
-      << scene.description << ": " << run.outcome.message;
-  EXPECT_LT(run.target_distance, 1e-3) << scene.description;
-  EXPECT_GT(run.plan_gap, -1e-6) << scene.description;
-  ASSERT_EQ(run.verification.status, fesd::SolveStatus::kSuccess) << scene.description;
-  EXPECT_GT(run.verification_gap, -1e-6) << scene.description;
-  EXPECT_LT(run.verification.error, 1e-2) << scene.description;
+  expectReachedAndVerified(scene, run);
 }
 
 // One pusher (3, 5, 9) and a helper beside it (2, 11), posts on the line in each; the seeds

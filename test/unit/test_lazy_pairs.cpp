@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "fesd_trajopt/examples/robot_scenes.h"
-#include "fesd_trajopt/scene/lazy_pairs.h"
 #include "fesd_trajopt/planning/robot_guess.h"
+#include "fesd_trajopt/scene/lazy_pairs.h"
 #include "support/robot_files.h"
 
 namespace {

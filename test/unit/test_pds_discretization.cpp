@@ -115,40 +115,6 @@ TEST(PdsGuesses, ATrajectoryOnTheSameGridIsTakenOverExactly) {
   EXPECT_THROW(discretization.guessFromTrajectory(other_grid), std::invalid_argument);
 }
 
-TEST(PdsGuesses, ContactOnsetsOfAGuessBecomeElementBoundaries) {
-  // Intervals of 0.75 with three elements (h0 = 0.25). An onset at 0.3: one element before it,
-  // the longer rest shared by two (0.225 each). In the second interval: 0.76 lies within h0 / 4
-  // of its start and is left out, 1.0 and 1.1 cut it, 1.2 is one onset too many.
-  fesd::DiscretizationOptions options;
-  options.num_elements = 3;
-  fesd::PdsDiscretization discretization(beadOcp(), options);
-  fesd::TrajectoryGuess guess;
-  guess.state = [](double t) { return Eigen::Vector3d(t, 0.0, 0.0); };
-  guess.multipliers = [](double t) { return Eigen::VectorXd::Constant(2, t); };
-  guess.switch_times = {0.3, 0.76, 1.0, 1.1, 1.2};
-  const std::vector<double> x = discretization.guessFrom(guess);
-  const fesd::Trajectory trajectory = discretization.extract(x.data());
-  const std::vector<double> expected{0.0, 0.3, 0.525, 0.75, 1.0, 1.1, 1.5};
-  ASSERT_EQ(trajectory.times.size(), expected.size());
-  for (size_t n = 0; n < expected.size(); ++n) {
-    EXPECT_NEAR(trajectory.times[n], expected[n], 1e-15) << "boundary " << n;
-  }
-  // The guess is read at the stage points of that grid.
-  for (size_t e = 0; e < trajectory.elements.size(); ++e) {
-    const fesd::ElementValues& element = trajectory.elements[e];
-    for (int i = 0; i < element.stage_states.cols(); ++i) {
-      const double t = trajectory.times[e] + trajectory.stage_nodes(i) * element.step;
-      EXPECT_NEAR(element.stage_states(0, i), t, 1e-15);
-      EXPECT_NEAR(element.stage_multipliers(0, i), t, 1e-15);
-    }
-  }
-  // Without free steps (the standard method) the grid stays nominal.
-  options.switch_detection = false;
-  fesd::PdsDiscretization fixed(beadOcp(), options);
-  const std::vector<double> y = fixed.guessFrom(guess);
-  EXPECT_NEAR(fixed.extract(y.data()).times[1], 0.25, 1e-15);
-}
-
 TEST(NlpStructure, StandardMethodHasNoCrossComplementarityOrEquilibration) {
   fesd::DiscretizationOptions fesd_options, standard_options;
   fesd_options.num_stages = standard_options.num_stages = 2;

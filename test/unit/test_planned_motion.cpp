@@ -1,6 +1,6 @@
 // The planned motion of a push plan (planning/planned_motion.cpp): a leg moves the pushed body
-// by the force its pusher carries, transits are followed at constant speed, a stone in the way
-// is shoved, and the contact onsets are where legs and shoves begin.
+// by the force its pusher carries (also round a corner, the pusher turning behind it), transits
+// are followed at constant speed, and a stone in the way is shoved from when the puck meets it.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -41,7 +41,6 @@ TEST(PlannedMotion, ALegMovesThePushedBodyByTheForceItsPusherCarries) {
   const Eigen::VectorXd u = motion.meanControl(0.75, 1.25);
   EXPECT_NEAR(u(0), 6.0, 1e-5);
   EXPECT_NEAR(u(1), 0.0, 1e-9);
-  EXPECT_EQ(motion.contactOnsets(), std::vector<double>{0.5});
 }
 
 TEST(PlannedMotion, ThePusherTurnsWithATurningPushAndStillCarriesItsForce) {
@@ -78,18 +77,17 @@ TEST(PlannedMotion, ATransitIsFollowedAtConstantSpeed) {
   EXPECT_LT((motion.state(0.0).head<2>() - Eigen::Vector2d(-2, 0)).norm(), 1e-12);
 }
 
-TEST(PlannedMotion, AStoneInTheWayIsShovedFromWhenThePuckReachesIt) {
+TEST(PlannedMotion, AStoneInTheWayIsShovedAsTheProjectionWould) {
   HandPlan hand;
   hand.task.scene.bodies().push_back({"stone", 0.25, Eigen::Vector2d(2.0, 0.2), false});
   hand.task.bodies.emplace_back();
   const std::vector<fesd::ContactPair> pairs = hand.task.scene.allPairs();
   const fesd::PlannedMotion motion(hand.task, pairs, hand.legs, hand.transits);
   // The puck (R = 0.5) meets the stone (R = 0.25, 0.2 off the line) when its centre is at
-  // 2 - sqrt(0.75^2 - 0.2^2) = 1.2772, at t = 0.5 + 1.2772 / 3.
-  const std::vector<double> onsets = motion.contactOnsets();
-  ASSERT_EQ(onsets.size(), 2u);
-  EXPECT_EQ(onsets[0], 0.5);
-  EXPECT_NEAR(onsets[1], 0.5 + (2.0 - std::sqrt(0.75 * 0.75 - 0.04)) / 3.0, 5e-3);  // a step
+  // 2 - sqrt(0.75^2 - 0.2^2) = 1.2772, at t = 0.5 + 1.2772 / 3: untouched before, shoved after.
+  const double meeting = 0.5 + (2.0 - std::sqrt(0.75 * 0.75 - 0.04)) / 3.0;
+  EXPECT_EQ(motion.state(meeting - 0.01).tail<2>(), Eigen::Vector2d(2.0, 0.2));
+  EXPECT_GT((motion.state(meeting + 0.02).tail<2>() - Eigen::Vector2d(2.0, 0.2)).norm(), 0.0);
   const Eigen::VectorXd end = motion.state(1.5);
   EXPECT_GE((end.segment<2>(2) - end.tail<2>()).norm(), 0.75 - 1e-3);  // never overlapping
   EXPECT_GT(end(5), 0.2);  // shoved aside, the way the contact normal points

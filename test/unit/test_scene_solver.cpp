@@ -10,8 +10,8 @@
 
 #include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/examples/robot_scenes.h"
-#include "fesd_trajopt/scene/lazy_pairs.h"
 #include "fesd_trajopt/planning/scene_solver.h"
+#include "fesd_trajopt/scene/lazy_pairs.h"
 #include "support/robot_files.h"
 #include "support/scene_tasks.h"
 

@@ -46,22 +46,11 @@ void fixControl(NlpAssembly& nlp, const CollocationGrid& grid, int interval,
 void guessControls(const NlpAssembly& nlp, const CollocationGrid& grid, int nu,
                    const std::vector<Eigen::VectorXd>& controls, std::vector<double>& x);
 
-/// The steps of a guess: in each control interval, element boundaries at the switch times inside
-/// it (at most one fewer than its elements, at least h0 / 4 from the interval's ends and from
-/// each other, in order of time), the elements between two of them equally long and shared
-/// out so that each is as near h0 as the counts allow; nominal steps in an interval where that
-/// leaves a step outside its bounds.
-std::vector<double> guessSteps(const NlpAssembly& nlp, const CollocationGrid& grid, double h0,
-                               const std::vector<double>& switch_times);
-
-/// The states of `guess` at the stage and end points of its grid (guessSteps, the stages at the
-/// tableau's nodes), those steps and the guess's controls (guessControls). Returns the stage
-/// points' times, per element.
-std::vector<std::vector<double>> guessGridPoints(const NlpAssembly& nlp,
-                                                 const CollocationGrid& grid,
-                                                 const ButcherTableau& tableau, double h0, int nx,
-                                                 int nu, const TrajectoryGuess& guess,
-                                                 std::vector<double>& x);
+/// The states of `guess` at the stage and end points of the nominal grid (every step h0, the
+/// stages at the tableau's nodes), nominal steps and the guess's controls (guessControls).
+void guessGridPoints(const NlpAssembly& nlp, const CollocationGrid& grid,
+                     const ButcherTableau& tableau, double h0, int nx, int nu,
+                     const TrajectoryGuess& guess, std::vector<double>& x);
 /// sum of the steps of each control interval = its length.
 void addIntervalLengthRows(NlpAssembly& nlp, const CollocationGrid& grid, const OcpDefinition& ocp);
 /// rho * sigma * ((h_n - h_{n-1}) / h0)^2 in the objective (a term vanishing with sigma) that

@@ -15,10 +15,6 @@ struct TrajectoryGuess {
   /// algebraic variables from the states' regions.)
   std::function<Eigen::VectorXd(double)> multipliers;
   std::vector<Eigen::VectorXd> controls;  ///< one per control interval; empty: 0
-  /// Where the guess's contacts begin (sorted): the guess's element boundaries are put there
-  /// where the steps' bounds allow, so that no element holds a contact's start (a force inside
-  /// an element whose gap is open at its start violates the cross complementarity).
-  std::vector<double> switch_times;
 };
 
 }  // namespace fesd

@@ -35,12 +35,6 @@ class PlannedMotion {
   /// the mean contact reaction on them (4 midpoints per piece between the plan's breaks).
   Eigen::VectorXd meanControl(double begin, double end) const;
 
-  /// Where contacts begin, sorted: the legs' starts inside the horizon and the simulated shoves'
-  /// (a run of steps in which a pair shoved, gaps under a coarse step of the simulation closed).
-  /// Releases are left out: inside a control interval the cross complementarity wants a force
-  /// that vanishes at a release, which the plan's pushers, leaving at once, do not give.
-  std::vector<double> contactOnsets() const;
-
  private:
   /// A stretch of one body's plan: a transit, a leg it is pushed along, or a leg it pushes in
   /// (behind the pushed body at `offset`).
@@ -57,9 +51,8 @@ class PlannedMotion {
   void fitForces(const std::vector<int>& active, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                  Eigen::VectorXd& lambda, bool simulated_bodies) const;
   Eigen::VectorXd velocity(double t) const;
-  /// Moves simulated body b out of everything its pairs name, as the projection would, and
-  /// marks in `pressed` the pairs that moved it.
-  void shove(int b, Eigen::VectorXd& x, std::vector<bool>& pressed) const;
+  /// Moves simulated body b out of everything its pairs name, as the projection would.
+  void shove(int b, Eigen::VectorXd& x) const;
   void simulate();
 
   SceneTask task_;
@@ -72,7 +65,6 @@ class PlannedMotion {
   std::vector<bool> simulated_;  ///< passive bodies without a goal: they move only when pushed
   double sample_step_ = 0.0;
   std::vector<Eigen::VectorXd> samples_;  ///< full states every sample_step_ (when simulating)
-  std::vector<double> shove_onsets_;      ///< where simulated shoves begin
 };
 
 }  // namespace fesd
