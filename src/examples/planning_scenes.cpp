@@ -209,7 +209,8 @@ PlanningScene postsScene(unsigned seed) {
         {"post_" + std::to_string(task.scene.obstacles().size()), r, p});
   }
   const int stones = random.integer(0, 3);
-  for (int placed = 0, tries = 0; placed < stones && tries < 1000; ++tries) {
+  int placed = 0;
+  for (int tries = 0; placed < stones && tries < 1000; ++tries) {
     const double r = random(0.2, 0.4);
     const Eigen::VectorXd p(Eigen::Vector2d(random(low(0), high(0)), random(low(1), high(1))));
     if (!fits(task.scene, p, r, 0.3) ||
@@ -222,7 +223,7 @@ PlanningScene postsScene(unsigned seed) {
   std::ostringstream what;
   what << (two_pushers ? "two pushers" : "one pusher") << ", " << task.scene.obstacles().size()
        << " posts (" << std::min(on_the_line, static_cast<int>(task.scene.obstacles().size()))
-       << " on the line), " << stones << " stones";
+       << " on the line), " << placed << " stones";
   return described("posts", seed, std::move(task), 1, true, what.str());
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 
 #include "fesd_trajopt/planning/paths_around.h"
 #include "fesd_trajopt/planning/pusher_poses.h"
@@ -85,6 +86,9 @@ PlannedMotion::PlannedMotion(const SceneTask& task, const std::vector<ContactPai
     const PushLeg& leg = legs_[k];
     rounded_.emplace_back();
     if (!leg.through.empty()) {
+      if (task_.scene.dimension() != 2) {
+        throw std::invalid_argument("PlannedMotion: a push with turns is planar");
+      }
       std::vector<Eigen::Vector2d> corners{leg.from};
       corners.insert(corners.end(), leg.through.begin(), leg.through.end());
       corners.push_back(leg.to);
@@ -186,8 +190,8 @@ Eigen::VectorXd PlannedMotion::plannedPosition(int body, double t) const {
   Eigen::VectorXd p = task_.scene.bodies()[body].position;
   for (const Piece& piece : pieces_[body]) {
     if (t < piece.begin) break;
-    const double s =
-        (std::min(t, piece.end) - piece.begin) / std::max(piece.end - piece.begin, 1e-300);
+    // A piece of no duration (a push at the horizon) is at its end once reached.
+    const double s = t >= piece.end ? 1.0 : (t - piece.begin) / (piece.end - piece.begin);
     if (piece.transit >= 0) {
       p = pointAlong(transits_[piece.transit].path, s);
       continue;

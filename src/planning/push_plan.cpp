@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 
 #include "fesd_trajopt/planning/paths_around.h"
 #include "fesd_trajopt/planning/planned_motion.h"
@@ -51,8 +52,8 @@ std::vector<Eigen::VectorXd> inScene(const std::vector<Eigen::Vector2d>& path) {
 
 /// An actuated body's path from `from` to `to` round the obstacles and the bodies at rest (`rest`:
 /// their positions meanwhile; empty for bodies that move on their own); `touched` (-1: none), the
-/// body it arrives at or leaves in contact, is kept out of at exactly the contact distance.
-/// Straight in space.
+/// body it arrives at or leaves in contact, is kept out of to kTouchedFraction of the contact
+/// distance. Straight in space.
 std::vector<Eigen::VectorXd> transitPath(const SceneTask& task, int body,
                                          const Eigen::VectorXd& from, const Eigen::VectorXd& to,
                                          const std::vector<Eigen::VectorXd>& rest, int touched) {
@@ -80,9 +81,10 @@ std::vector<Eigen::VectorXd> transitPath(const SceneTask& task, int body,
 /// The turning points of a pushed body's legs from its start to `end`: round the obstacles (as
 /// near as touching: a straight push that grazes a post is still the push to plan), its pusher
 /// (radius `pusher_radius`, straight behind it) clear of them too along each leg; fewer legs win
-/// near ties (a leg costs half a turn of a pusher round it). Passive bodies on the way are shoved
-/// (going round them through clutter cost the solver up to 40 times the iterations on the
-/// cluttered sweep). Without such legs the push is straight. Straight in space.
+/// near ties (a leg costs a heuristic pi (R + r_pusher), about a pusher's way half round the body).
+/// Passive bodies on the way are shoved (going round them through clutter cost the solver up to 40
+/// times the iterations on the cluttered sweep). Without such legs the push is straight. Straight
+/// in space.
 std::vector<Eigen::VectorXd> legPoints(const SceneTask& task, int pushed,
                                        const Eigen::VectorXd& end, double pusher_radius) {
   const Scene& scene = task.scene;
@@ -175,9 +177,10 @@ std::vector<PushAssignment> contributing(const std::vector<PushAssignment>& push
 
 /// The push of one body from its start to `end` by `pushers` (placed for the straight push):
 /// straight, or in legs round the obstacles (legPoints) when the straight push is not passable,
-/// its corners rounded by the pushed body's and its largest pusher's radii.
-PushLeg planBodyPush(const SceneTask& task, int pushed, const Eigen::VectorXd& end,
-                     const std::vector<PushAssignment>& pushers) {
+/// its corners rounded by the pushed body's and its largest pusher's radii, the same pushers
+/// placed anew behind its first leg; straight when one of them finds no pose there.
+PushLeg planBodyPush(const SceneTask& task, const std::vector<ContactPair>& pairs, int pushed,
+                     const Eigen::VectorXd& end, const std::vector<PushAssignment>& pushers) {
   const Scene& scene = task.scene;
   PushLeg leg{pushed, scene.bodies()[pushed].position, end, 0.0, 0.0, pushers, {}, 0.0};
   double pusher_radius = 0.0;
@@ -186,17 +189,14 @@ PushLeg planBodyPush(const SceneTask& task, int pushed, const Eigen::VectorXd& e
   }
   const std::vector<Eigen::VectorXd> points = legPoints(task, pushed, end, pusher_radius);
   if (points.size() == 2) return leg;
+  std::vector<bool> busy(scene.bodies().size(), true);
+  for (const PushAssignment& push : pushers) busy[push.pusher] = false;
+  std::vector<PushAssignment> behind_first =
+      placePushers(task, pairs, pushed, points[0], points[1], busy);
+  if (behind_first.size() != pushers.size()) return leg;
+  leg.pushes = std::move(behind_first);
   leg.through.assign(points.begin() + 1, points.end() - 1);
   leg.turn_radius = scene.bodies()[pushed].radius + pusher_radius;
-  // The pushers start behind the first leg's direction, as placed for it, and turn with the path.
-  const Eigen::VectorXd direction = (points[1] - points[0]).normalized();
-  for (PushAssignment& push : leg.pushes) {
-    const Eigen::VectorXd straight = (end - leg.from).normalized();
-    const double angle = std::atan2(straight(0) * direction(1) - straight(1) * direction(0),
-                                    straight.dot(direction));
-    const Eigen::Rotation2Dd turn(angle);
-    push.offset = turn * Eigen::Vector2d(push.offset);
-  }
   return leg;
 }
 
@@ -205,6 +205,7 @@ PushLeg planBodyPush(const SceneTask& task, int pushed, const Eigen::VectorXd& e
 Eigen::VectorXd endOffset(const PushLeg& leg, size_t k) {
   const Eigen::VectorXd& offset = leg.pushes[k].offset;
   if (leg.through.empty()) return offset;
+  if (offset.size() != 2) throw std::invalid_argument("endOffset: a push with turns is planar");
   const Eigen::Vector2d first = leg.through.front() - leg.from, last = leg.to - leg.through.back();
   const double turn = std::atan2(first.x() * last.y() - first.y() * last.x(), first.dot(last));
   return Eigen::Rotation2Dd(turn) * Eigen::Vector2d(offset);
@@ -245,7 +246,7 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
   std::vector<PushLeg> pushes;
   for (int b = 0; b < count; ++b) {
     if (pushers[b].empty()) continue;
-    pushes.push_back(planBodyPush(task, b, planned.bodies[b].target, pushers[b]));
+    pushes.push_back(planBodyPush(task, pairs, b, planned.bodies[b].target, pushers[b]));
     plan.pushes.insert(plan.pushes.end(), pushes.back().pushes.begin(), pushes.back().pushes.end());
   }
 

@@ -242,7 +242,7 @@ PushPlan::ShortPush pushableEnd(const SceneTask& task, const std::vector<Contact
     return judgement;
   };
   const auto pushable = [&](const Eigen::VectorXd& end) { return judge(end).in_time; };
-  // The target's own path may go around obstacles (besidePath); a replacement's may not.
+  // The target's own path may go around obstacles (legPoints); a replacement's may not.
   const Judgement at_target = clearEnd(scene, pushed, target) ? judge(target) : Judgement{};
   if (at_target.in_time) return {pushed, target};
   PushPlan::ShortPush short_push{pushed, start, at_target.placeable};

@@ -203,6 +203,7 @@ fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
   const std::vector<fesd::PairDecision>& decisions = outcome.decisions;
   fesd_trajopt::Solution solution;
   fillCommon(trajectory, report, solution);
+  solution.statistics.guess_residual = outcome.guess_residual;  // NaN: no first guess
   for (int b = 0; b < static_cast<int>(scene.bodies().size()); ++b) {
     solution.bodies.push_back(
         bodyTrajectory(scene.bodies()[b], targetDistance(outcome.target_distances, b), trajectory,
@@ -317,8 +318,24 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
     disc("obstacles", point(o.position), o.radius, color(0.5, 0.5, 0.5, 1.0));
   }
   for (const fesd::PushLeg& leg : legs) {
+    Eigen::VectorXd from = leg.from;
+    if (!leg.through.empty()) {  // the turning push along its rounded corners, the arrow at its end
+      std::vector<Eigen::Vector2d> corners{leg.from};
+      corners.insert(corners.end(), leg.through.begin(), leg.through.end());
+      corners.push_back(leg.to);
+      const fesd::RoundedPath path(corners, leg.turn_radius);
+      visualization_msgs::Marker line = marker("plan_legs", visualization_msgs::Marker::LINE_STRIP);
+      constexpr int kSamples = 40;
+      for (int k = 0; k <= kSamples; ++k) {
+        line.points.push_back(point(path.at(path.length() * k / kSamples)));
+      }
+      line.scale.x = 0.12;
+      line.color = color(0.9, 0.5, 0.1, 0.8);
+      markers.markers.push_back(line);
+      from = path.at(path.length() - std::min(path.length(), (leg.to - leg.through.back()).norm()));
+    }
     visualization_msgs::Marker arrow = marker("plan_legs", visualization_msgs::Marker::ARROW);
-    arrow.points = {point(leg.from), point(leg.to)};
+    arrow.points = {point(from), point(leg.to)};
     arrow.scale.x = 0.12;  // shaft and head diameters, head length
     arrow.scale.y = 0.35;
     arrow.scale.z = 0.4;
@@ -326,7 +343,7 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
     markers.markers.push_back(arrow);
   }
   for (const fesd::Transit& transit : transits) {
-    // Dashed: every other piece of the path cut in tenths of a pusher's radius.
+    // Dashed: every other piece of the path cut into pieces of about 0.25.
     visualization_msgs::Marker dashes =
         marker("plan_transits", visualization_msgs::Marker::LINE_LIST);
     const double length = fesd::pathLength(transit.path);

@@ -304,7 +304,6 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
       fesd::startName(outcome.start, robot ? "robot guess" : "push plan", "previous round");
   solution.statistics.pair_rounds = outcome.pair_rounds;
   solution.statistics.warm_started = outcome.warm_started;
-  solution.statistics.guess_residual = outcome.guess_residual;
   solution.statistics.nlp_variables = outcome.sizes.variables;
   solution.statistics.nlp_constraints = outcome.sizes.constraints;
   solution.statistics.complementarity_constraints = outcome.sizes.complementarities;

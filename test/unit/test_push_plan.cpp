@@ -250,6 +250,7 @@ TEST(PushPlan, APushAlongAWallIsOneStraightLeg) {
   const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();
   const fesd::PushPlan plan = fesd::planPushes(task, pairs);
   ASSERT_EQ(plan.legs.size(), 1u);
+  EXPECT_TRUE(plan.legs[0].through.empty());  // straight along the wall, no turns
   for (double t = 0.0; t <= task.horizon; t += 0.01) {
     const Eigen::VectorXd x = plan.guess.state(t);
     EXPECT_GE(x(1), -1e-12) << "pusher, t = " << t;

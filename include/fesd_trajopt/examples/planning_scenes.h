@@ -35,7 +35,7 @@ PlanningScene scene(const std::string& family, unsigned seed);
 /// anywhere), one third fixed obstacles, which keep clear of the pushed body's corridor, its
 /// target and the stretch beyond it, so the target stays reachable by pushing through.
 PlanningScene clutteredScene(unsigned seed);
-/// A pusher and a puck (one pusher in two scenes, a helper beside it in the others) with 3-7
+/// A pusher and a puck (a helper pusher beside it in about half the scenes) with 3-7
 /// posts, one or two on the push line, a pusher's width apart and clear of the start and the
 /// target, and up to 3 stones (passive discs) off the line: pushes that must go round.
 PlanningScene postsScene(unsigned seed);

@@ -8,8 +8,8 @@
 namespace fesd {
 
 /// A disc the path keeps out of: no point of the path comes nearer its centre than `distance`;
-/// where the path turns round it, it keeps `corner` (>= distance) from it, so that what moves
-/// along the path has room to turn there (a pusher going round the body it pushes).
+/// where the path turns round it, it keeps `corner` (>= distance) from it, so that a turn has
+/// some room (a rounded corner cuts inside its turning point).
 struct KeepOut {
   Eigen::Vector2d centre;
   double distance;

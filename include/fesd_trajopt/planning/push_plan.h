@@ -44,8 +44,8 @@ struct Transit {
 /// A first guess for a scene task's OCP from a plan of contacts in three phases shared by all
 /// bodies: approach (each pusher goes to its pushing pose), push (every passive body with a
 /// target is pushed to it: straight, or round obstacles in straight legs joined by turns in which
-/// its pushers turn round it), return (the pushers go to their own targets). Phase lengths are
-/// those of least control effort for this motion (tau ~ the root of the summed squared
+/// its pushers turn with it, straight behind), return (the pushers go to their own targets). Phase
+/// lengths are those of least control effort for this motion (tau ~ the root of the summed squared
 /// displacements of control). Bodies without a push go to their targets over the horizon, or
 /// stay.
 ///
@@ -63,8 +63,8 @@ struct Transit {
 struct PushPlan {
   /// Where the push phase begins and ends (both the horizon when nothing is pushed).
   double contact_time = 0.0, release_time = 0.0;
-  std::vector<PushAssignment> pushes;  ///< of each pushed body's first leg
-  std::vector<PushLeg> legs;           ///< in the order of the bodies, then of time
+  std::vector<PushAssignment> pushes;  ///< of each pushed body, at its push's start
+  std::vector<PushLeg> legs;           ///< one push per pushed body, in their order
   std::vector<Transit> transits;       ///< of the actuated bodies, in order of body and time
   /// Pushed bodies whose target the pushers cannot reach (workspace bounds, it lies in an
   /// obstacle, or not within the horizon at their speed bounds): the plan pushes them to the
@@ -83,7 +83,8 @@ struct PushPlan {
 /// Pushers: each actuated body pushes at most one passive body with a target, through a body
 /// pair of `pairs`. Its pushing pose is the one most directly behind the push (tilted in steps of
 /// 1 degree up to 89) that keeps it inside its workspace bounds at the start and end of the push
-/// and apart from the pushers placed before it; only pushers whose force the push needs stay. Only
+/// (of its first leg, for a push in legs; where the turns take it is not checked) and apart from
+/// the pushers placed before it; only pushers whose force the push needs stay. Only
 /// the pairs in `pairs` touch in the plan, and the guess's multipliers are theirs, in that order. A
 /// target no placement of pushers can push to is replaced in the plan by the nearest end one can.
 PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs);
