@@ -125,14 +125,18 @@ OcpSolution OcpSolver::solveFromPoint(const std::vector<double>& point, double w
 }
 
 OcpSolution OcpSolver::solveFromGuess(const TrajectoryGuess& guess, double wall_time_budget) {
-  OcpSolution from_guess = solveFromPoint(discretization_->guessFrom(guess), wall_time_budget);
+  const std::vector<double> point = discretization_->guessFrom(guess);
+  const double residual = discretization_->nlp().equalityResidual(point.data());
+  OcpSolution from_guess = solveFromPoint(point, wall_time_budget);
   from_guess.start = OcpStart::kGuess;
+  from_guess.guess_residual = residual;
   if (from_guess.status == SolveStatus::kSuccess || interrupted(from_guess.status)) {
     return from_guess;
   }
   OcpSolution solution =
       after(from_guess, solveFromConstant(wall_time_budget - from_guess.report.wall_seconds));
   solution.start = OcpStart::kConstantAfterGuess;
+  solution.guess_residual = from_guess.guess_residual;
   solution.message = "from the guess: " + statusName(from_guess.status) +
                      "; then from the constant start: " + solution.message;
   return solution;

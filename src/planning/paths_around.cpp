@@ -87,6 +87,10 @@ std::vector<Eigen::Vector2d> pathAround(const PathQuery& query) {
   return path;
 }
 
+double signedAngle(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+}
+
 RoundedPath::RoundedPath(const std::vector<Eigen::Vector2d>& corners, double radius) {
   Eigen::Vector2d from = corners.front();
   const auto straight = [&](const Eigen::Vector2d& to) {
@@ -101,7 +105,7 @@ RoundedPath::RoundedPath(const std::vector<Eigen::Vector2d>& corners, double rad
   for (size_t k = 1; k + 1 < corners.size(); ++k) {
     const Eigen::Vector2d in = (corners[k] - corners[k - 1]).normalized();
     const Eigen::Vector2d out = (corners[k + 1] - corners[k]).normalized();
-    const double turn = std::atan2(in.x() * out.y() - in.y() * out.x(), in.dot(out));
+    const double turn = signedAngle(in, out);
     const double half = std::tan(0.5 * std::fabs(turn));
     if (half < 1e-12) continue;
     // Each arc uses at most half of its pieces, so that neighbouring arcs do not overlap.

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <stdexcept>
 
 #include "fesd_trajopt/planning/paths_around.h"
 #include "fesd_trajopt/planning/pusher_poses.h"
@@ -85,15 +84,8 @@ PlannedMotion::PlannedMotion(const SceneTask& task, const std::vector<ContactPai
   for (size_t k = 0; k < legs_.size(); ++k) {
     const PushLeg& leg = legs_[k];
     rounded_.emplace_back();
-    if (!leg.through.empty()) {
-      if (task_.scene.dimension() != 2) {
-        throw std::invalid_argument("PlannedMotion: a push with turns is planar");
-      }
-      std::vector<Eigen::Vector2d> corners{leg.from};
-      corners.insert(corners.end(), leg.through.begin(), leg.through.end());
-      corners.push_back(leg.to);
-      rounded_.back() = std::make_shared<const RoundedPath>(corners, leg.turn_radius);
-    }
+    if (!leg.through.empty())
+      rounded_.back() = std::make_shared<const RoundedPath>(roundedPush(leg));
     pieces_[leg.pushed].push_back({leg.begin, leg.end, -1, static_cast<int>(k), {}});
     for (const PushAssignment& push : leg.pushes) {
       pieces_[push.pusher].push_back({leg.begin, leg.end, -1, static_cast<int>(k), push.offset});
@@ -111,7 +103,7 @@ PlannedMotion::PlannedMotion(const SceneTask& task, const std::vector<ContactPai
   breaks_.erase(std::unique(breaks_.begin(), breaks_.end()), breaks_.end());
   for (int b = 0; b < count; ++b) {
     const BodyTask& t = task_.bodies[b];
-    const bool has_goal = t.target.size() && t.target_weight > 0.0;
+    const bool has_goal = t.hasTarget();
     const bool pushed = std::any_of(legs_.begin(), legs_.end(),
                                     [b](const PushLeg& leg) { return leg.pushed == b; });
     simulated_.push_back(!scene.bodies()[b].actuated && !pushed && !has_goal &&
@@ -208,8 +200,7 @@ Eigen::VectorXd PlannedMotion::plannedPosition(int body, double t) const {
     p = path.at(arc);
     if (piece.offset.size()) {
       const Eigen::Vector2d now = path.tangent(arc), first = path.tangent(0.0);
-      const double turn = std::atan2(first.x() * now.y() - first.y() * now.x(), first.dot(now));
-      p += Eigen::Rotation2Dd(turn) * Eigen::Vector2d(piece.offset);
+      p += Eigen::Rotation2Dd(signedAngle(first, now)) * Eigen::Vector2d(piece.offset);
     }
   }
   return p;

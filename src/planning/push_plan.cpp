@@ -23,18 +23,6 @@ constexpr double kClearance = 0.05;
 /// (PlannedMotion), as before; one that would cross the body goes round it.
 constexpr double kTouchedFraction = 0.8;
 
-bool hasGoal(const BodyTask& t) {
-  return t.target.size() && t.target_weight > 0.0;
-}
-
-bool insideWorkspace(const BodyTask& task, const Eigen::Vector2d& p) {
-  for (int d = 0; d < 2; ++d) {
-    if (task.workspace_lower.size() && p(d) < task.workspace_lower(d)) return false;
-    if (task.workspace_upper.size() && p(d) > task.workspace_upper(d)) return false;
-  }
-  return true;
-}
-
 /// Turning points of a body of radius `room` (around its centre) inside its workspace and at
 /// least `room` from every wall.
 std::function<bool(const Eigen::Vector2d&)> roomFor(const SceneTask& task, int body, double room) {
@@ -42,7 +30,7 @@ std::function<bool(const Eigen::Vector2d&)> roomFor(const SceneTask& task, int b
     for (const SceneWall& wall : task.scene.walls()) {
       if (wall.normal.head<2>().dot(p) - wall.offset < room) return false;
     }
-    return insideWorkspace(task.bodies[body], p);
+    return task.bodies[body].insideWorkspace(p);
   };
 }
 
@@ -125,29 +113,26 @@ std::vector<Eigen::VectorXd> legPoints(const SceneTask& task, int pushed,
   return inScene(pathAround(query));
 }
 
-/// A push's turning points from its start to its end.
-std::vector<Eigen::VectorXd> legCorners(const PushLeg& leg) {
-  std::vector<Eigen::VectorXd> corners{leg.from};
-  corners.insert(corners.end(), leg.through.begin(), leg.through.end());
-  corners.push_back(leg.to);
-  return corners;
-}
-
 double squaredLength(const std::vector<Eigen::VectorXd>& path) {
   if (path.size() == 2) return (path[1] - path[0]).squaredNorm();
   const double length = pathLength(path);
   return length * length;
 }
 
-/// The control effort of a push (the summed squared displacement of its pushers' controls): a
-/// pusher's control is its velocity minus the reaction 2 offset lambda, with the impulses
-/// (lambda times the push's duration) that move the body by `displacement`, G impulse =
-/// displacement (G's columns grad_{p_pushed} c = -2 offset). A turning push counts as straight
-/// along its first direction for its length: its pushers turn with it.
-double pushEffort(const std::vector<PushAssignment>& pushes, const Eigen::VectorXd& displacement) {
+/// The impulses (lambda times the push's duration) with which the pushers move their body by
+/// `displacement`: G impulse = displacement, G's columns grad_{p_pushed} c = -2 offset, >= 0.
+Eigen::VectorXd pushImpulses(const std::vector<PushAssignment>& pushes,
+                             const Eigen::VectorXd& displacement) {
   Eigen::MatrixXd G(displacement.size(), pushes.size());
   for (size_t k = 0; k < pushes.size(); ++k) G.col(k) = -2.0 * pushes[k].offset;
-  const Eigen::VectorXd impulse = nonnegativeLeastSquares(G, displacement);
+  return nonnegativeLeastSquares(G, displacement);
+}
+
+/// The control effort of a push (the summed squared displacement of its pushers' controls): a
+/// pusher's control is its velocity minus the reaction 2 offset lambda (pushImpulses). A turning
+/// push counts as straight along its first direction for its length: its pushers turn with it.
+double pushEffort(const std::vector<PushAssignment>& pushes, const Eigen::VectorXd& displacement) {
+  const Eigen::VectorXd impulse = pushImpulses(pushes, displacement);
   double effort = 0.0;
   for (size_t k = 0; k < pushes.size(); ++k) {
     effort += (displacement - 2.0 * pushes[k].offset * impulse(k)).squaredNorm();
@@ -161,9 +146,7 @@ double pushEffort(const std::vector<PushAssignment>& pushes, const Eigen::Vector
 std::vector<PushAssignment> contributing(const std::vector<PushAssignment>& pushers,
                                          const Eigen::VectorXd& displacement,
                                          std::vector<bool>& busy) {
-  Eigen::MatrixXd G(displacement.size(), pushers.size());
-  for (size_t k = 0; k < pushers.size(); ++k) G.col(k) = -2.0 * pushers[k].offset;
-  const Eigen::VectorXd impulse = nonnegativeLeastSquares(G, displacement);
+  const Eigen::VectorXd impulse = pushImpulses(pushers, displacement);
   std::vector<PushAssignment> needed;
   for (size_t k = 0; k < pushers.size(); ++k) {
     if (impulse(k) > 0.0) {
@@ -202,13 +185,25 @@ PushLeg planBodyPush(const SceneTask& task, const std::vector<ContactPair>& pair
 
 }  // namespace
 
+std::vector<Eigen::VectorXd> pushCorners(const PushLeg& leg) {
+  std::vector<Eigen::VectorXd> corners{leg.from};
+  corners.insert(corners.end(), leg.through.begin(), leg.through.end());
+  corners.push_back(leg.to);
+  return corners;
+}
+
+RoundedPath roundedPush(const PushLeg& leg) {
+  if (leg.from.size() != 2) throw std::invalid_argument("roundedPush: a push with turns is planar");
+  const std::vector<Eigen::VectorXd> corners = pushCorners(leg);
+  return RoundedPath(std::vector<Eigen::Vector2d>(corners.begin(), corners.end()), leg.turn_radius);
+}
+
 Eigen::VectorXd endOffset(const PushLeg& leg, size_t k) {
   const Eigen::VectorXd& offset = leg.pushes[k].offset;
   if (leg.through.empty()) return offset;
   if (offset.size() != 2) throw std::invalid_argument("endOffset: a push with turns is planar");
   const Eigen::Vector2d first = leg.through.front() - leg.from, last = leg.to - leg.through.back();
-  const double turn = std::atan2(first.x() * last.y() - first.y() * last.x(), first.dot(last));
-  return Eigen::Rotation2Dd(turn) * Eigen::Vector2d(offset);
+  return Eigen::Rotation2Dd(signedAngle(first, last)) * Eigen::Vector2d(offset);
 }
 
 PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs) {
@@ -222,7 +217,7 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
   std::vector<std::vector<PushAssignment>> pushers(count);
   for (int b = 0; b < count; ++b) {
     const BodyTask& t = task.bodies[b];
-    if (scene.bodies()[b].actuated || !hasGoal(t) || (t.target - starts[b]).norm() == 0.0) {
+    if (scene.bodies()[b].actuated || !t.hasTarget() || (t.target - starts[b]).norm() == 0.0) {
       continue;
     }
     const PushPlan::ShortPush short_push = pushableEnd(task, pairs, b, busy);
@@ -237,7 +232,7 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
   // nothing.
   const auto atRest = [&](std::vector<Eigen::VectorXd> positions) {
     for (int b = 0; b < count; ++b) {
-      if (scene.bodies()[b].actuated && (hasGoal(task.bodies[b]) || busy[b]))
+      if (scene.bodies()[b].actuated && (task.bodies[b].hasTarget() || busy[b]))
         positions[b].resize(0);
     }
     return positions;
@@ -254,7 +249,7 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
   std::vector<std::vector<Eigen::VectorXd>> approach(count);
   double approach_effort = 0.0, push_effort = 0.0, back_effort = 0.0;
   for (const PushLeg& push : pushes) {
-    const std::vector<Eigen::VectorXd> corners = legCorners(push);
+    const std::vector<Eigen::VectorXd> corners = pushCorners(push);
     const Eigen::VectorXd displacement =
         corners.size() == 2
             ? Eigen::VectorXd(push.to - push.from)
@@ -271,7 +266,7 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
   for (const PushLeg& push : pushes) {
     for (size_t k = 0; k < push.pushes.size(); ++k) {
       const BodyTask& t = task.bodies[push.pushes[k].pusher];
-      if (hasGoal(t)) back_effort += (t.target - push.to - endOffset(push, k)).squaredNorm();
+      if (t.hasTarget()) back_effort += (t.target - push.to - endOffset(push, k)).squaredNorm();
     }
   }
   // Phase lengths of least control effort: with straight, uniform motion a phase of length tau
@@ -297,7 +292,7 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
     if (!scene.bodies()[b].actuated) continue;
     if (!approach[b].empty()) {
       plan.transits.push_back({b, 0.0, plan.contact_time, approach[b]});
-    } else if (hasGoal(task.bodies[b])) {
+    } else if (task.bodies[b].hasTarget()) {
       // Actuated bodies without a push go to their targets over the horizon.
       plan.transits.push_back(
           {b, 0.0, task.horizon,
@@ -313,7 +308,7 @@ PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs
     for (const PushLeg& push : plan.legs) {
       for (size_t k = 0; k < push.pushes.size(); ++k) {
         const int pusher = push.pushes[k].pusher;
-        if (!hasGoal(task.bodies[pusher])) continue;
+        if (!task.bodies[pusher].hasTarget()) continue;
         plan.transits.push_back({pusher, plan.release_time, task.horizon,
                                  transitPath(task, pusher, push.to + endOffset(push, k),
                                              task.bodies[pusher].target, rest, push.pushed)});

@@ -17,14 +17,6 @@ constexpr double kUnpushableFraction = 0.1;
 /// Rings searched around an unreachable target, out to the push's length.
 constexpr int kSearchRings = 50;
 
-bool insideWorkspace(const BodyTask& task, const Eigen::VectorXd& p) {
-  for (int d = 0; d < p.size(); ++d) {
-    if (task.workspace_lower.size() && p(d) < task.workspace_lower(d)) return false;
-    if (task.workspace_upper.size() && p(d) > task.workspace_upper(d)) return false;
-  }
-  return true;
-}
-
 /// Unit vectors from a pushed body towards candidate pusher poses: straight behind the push
 /// first, then tilted away from it in steps of 1 degree (in 2-D to either side, in 3-D towards
 /// 12 directions around it).
@@ -175,8 +167,8 @@ std::vector<PushAssignment> placePushers(const SceneTask& task,
     for (const Eigen::VectorXd& direction : candidates) {
       const Eigen::VectorXd offset = distance * direction;
       const bool fits =
-          insideWorkspace(task.bodies[pusher], from + offset) &&
-          insideWorkspace(task.bodies[pusher], to + offset) &&
+          task.bodies[pusher].insideWorkspace(from + offset) &&
+          task.bodies[pusher].insideWorkspace(to + offset) &&
           std::all_of(placed.begin(), placed.end(), [&](const PushAssignment& p) {
             return (p.offset - offset).norm() >= radius + scene.bodies()[p.pusher].radius;
           });

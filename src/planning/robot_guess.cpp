@@ -15,7 +15,7 @@ int pushedBody(const SceneTask& task) {
   const Scene& scene = task.scene;
   for (size_t b = 0; b < scene.bodies().size(); ++b) {
     const BodyTask& t = task.bodies[b];
-    if (!scene.bodies()[b].actuated && t.target.size() && t.target_weight > 0.0) {
+    if (!scene.bodies()[b].actuated && t.hasTarget()) {
       return static_cast<int>(b);
     }
   }

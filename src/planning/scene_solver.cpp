@@ -163,7 +163,7 @@ void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const FirstGuess
   outcome.target_distances.assign(scene.bodies().size(), nan);
   for (size_t b = 0; b < scene.bodies().size(); ++b) {
     const BodyTask& t = task.bodies[b];
-    if (t.target.size() == 0 || !(t.target_weight > 0.0)) continue;
+    if (!t.hasTarget()) continue;
     const double distance = (scene.position(static_cast<int>(b), end) - t.target).norm();
     outcome.target_distances[b] = distance;
     if (distance <= targetTolerance(t.target_weight)) continue;
@@ -308,15 +308,12 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
       const bool warm = options.previous != nullptr && outcome.cold_start_reason.empty();
       OcpSolution previous;
       if (warm) previous.report = options.previous->report;
-      if (!warm) {
-        outcome.guess_residual =
-            nlp.equalityResidual(solver.discretization().guessFrom(guess).data());
-      }
       solution = warm ? solver.solve(previous, guess) : solver.solve(guess);
       if (warm && solution.start != OcpStart::kPrevious) {
         outcome.cold_start_reason = "the warm solve failed";
       }
       outcome.warm_started = solution.start == OcpStart::kPrevious;
+      outcome.guess_residual = solution.guess_residual;
     } else {
       solution = solver.solve(partTrajectory(aimed, part, previous_round, previous_pairs), guess);
       solution.report.history.insert(solution.report.history.begin(),

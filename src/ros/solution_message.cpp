@@ -320,10 +320,7 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
   for (const fesd::PushLeg& leg : legs) {
     Eigen::VectorXd from = leg.from;
     if (!leg.through.empty()) {  // the turning push along its rounded corners, the arrow at its end
-      std::vector<Eigen::Vector2d> corners{leg.from};
-      corners.insert(corners.end(), leg.through.begin(), leg.through.end());
-      corners.push_back(leg.to);
-      const fesd::RoundedPath path(corners, leg.turn_radius);
+      const fesd::RoundedPath path = fesd::roundedPush(leg);
       visualization_msgs::Marker line = marker("plan_legs", visualization_msgs::Marker::LINE_STRIP);
       constexpr int kSamples = 40;
       for (int k = 0; k <= kSamples; ++k) {

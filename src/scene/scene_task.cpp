@@ -296,10 +296,7 @@ std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
     }
     problem = boundsProblem(t.workspace_lower, t.workspace_upper, dim);
     if (!problem.empty()) return who + ": the workspace bounds " + problem;
-    if ((t.workspace_lower.size() && (body.position.array() < t.workspace_lower.array()).any()) ||
-        (t.workspace_upper.size() && (body.position.array() > t.workspace_upper.array()).any())) {
-      return who + " starts outside its workspace bounds";
-    }
+    if (!t.insideWorkspace(body.position)) return who + " starts outside its workspace bounds";
   }
   if (scene.controlSize() == 0) return "no body is actuated, so nothing can move";
   problem = fixedGeometryProblem(scene, limits);
@@ -354,10 +351,7 @@ std::string infeasibility(const SceneTask& task) {
     const BodyTask& t = task.bodies[b];
     if (t.target.size() == 0 || t.target_weight == 0.0) continue;
     const std::string who = "body '" + task.scene.bodies()[b].name + "'";
-    if ((t.workspace_lower.size() && (t.target.array() < t.workspace_lower.array()).any()) ||
-        (t.workspace_upper.size() && (t.target.array() > t.workspace_upper.array()).any())) {
-      return who + " has its target outside its workspace bounds";
-    }
+    if (!t.insideWorkspace(t.target)) return who + " has its target outside its workspace bounds";
     // All of a body's collision bodies share its reach.
     const int first = task.scene.freeBodyCollisionBodies(static_cast<int>(b))[0];
     const Box box = reachableBox(task, static_cast<int>(b), Eigen::Vector3d::Zero(), reach[first]);
@@ -429,7 +423,7 @@ OcpDefinition buildOcp(const SceneTask& task, const std::vector<ContactPair>& mo
     }
     if (t.workspace_lower.size()) ocp.state_lower.segment(first, dim) = t.workspace_lower;
     if (t.workspace_upper.size()) ocp.state_upper.segment(first, dim) = t.workspace_upper;
-    if (t.target.size() && t.target_weight > 0.0) {
+    if (t.hasTarget()) {
       terminal_weights.segment(first, dim).setConstant(t.target_weight);
       targets.segment(first, dim) = t.target;
     }

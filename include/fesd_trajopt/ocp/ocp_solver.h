@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -68,6 +69,9 @@ struct OcpSolution {
   /// accurate even when the status is kSuccess.
   Trajectory trajectory;
   MpccReport report;  ///< homotopy history, iterations, times, objective, residual
+  /// For a solve that started from a TrajectoryGuess: the guess point's residual in the NLP's
+  /// equations (NlpAssembly::equalityResidual); NaN otherwise.
+  double guess_residual = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Optimal control of a nonsmooth system (any DynamicsModel) with FESD: builds the discretisation

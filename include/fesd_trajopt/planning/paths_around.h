@@ -42,6 +42,9 @@ constexpr int kTurningPointsPerDisc = 16;
 /// near it comes no nearer. Without a path that keeps out of them all: the straight segment.
 std::vector<Eigen::Vector2d> pathAround(const PathQuery& query);
 
+/// The signed angle from a to b (counter-clockwise positive), in [-pi, pi].
+double signedAngle(const Eigen::Vector2d& a, const Eigen::Vector2d& b);
+
 /// A polyline in the plane with its corners rounded by circular arcs of radius up to `radius`
 /// (smaller where a neighbouring piece is too short for it): position and unit tangent by arc
 /// length, both continuous, so that a pusher behind a body moving along it turns with it.

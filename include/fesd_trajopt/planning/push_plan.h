@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 
 #include "fesd_trajopt/discretization/trajectory_guess.h"
+#include "fesd_trajopt/planning/paths_around.h"
 #include "fesd_trajopt/scene/scene_task.h"
 
 namespace fesd {
@@ -27,6 +28,11 @@ struct PushLeg {
   std::vector<Eigen::VectorXd> through;
   double turn_radius = 0.0;
 };
+
+/// A push's turning points from its start to its end (from, through..., to).
+std::vector<Eigen::VectorXd> pushCorners(const PushLeg& leg);
+/// The path of a push with turns, its corners rounded by its turn radius (planar pushes only).
+RoundedPath roundedPush(const PushLeg& leg);
 
 /// Where pusher k of a push sits relative to the pushed body at the push's end: its offset turned
 /// as the path turns from its first direction to its last.

@@ -58,7 +58,7 @@ struct SceneOutcome {
   std::vector<double> joint_target_distances;
   /// The first guess's residual in the NLP's equations (NlpAssembly::equalityResidual at its
   /// point on the first round's grid): how far it is from dynamics consistent with its contacts.
-  /// NaN when the solve started from a previous solution.
+  /// NaN when the solve started from a previous solution (and its guess was not needed).
   double guess_residual = std::numeric_limits<double>::quiet_NaN();
 
   bool solved() const { return invalid.empty() && infeasible.empty(); }

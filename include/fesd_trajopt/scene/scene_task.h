@@ -18,6 +18,14 @@ struct BodyTask {
   Eigen::VectorXd target;      ///< empty: no target
   double target_weight = 0.0;  ///< weight of |p(T) - target|^2 in the cost
   Eigen::VectorXd workspace_lower, workspace_upper;  ///< per coordinate; empty: none
+
+  /// A target the cost weighs.
+  bool hasTarget() const { return target.size() && target_weight > 0.0; }
+  /// p within the workspace bounds (every coordinate; no bounds: everywhere).
+  bool insideWorkspace(const Eigen::VectorXd& p) const {
+    return !(workspace_lower.size() && (p.array() < workspace_lower.array()).any()) &&
+           !(workspace_upper.size() && (p.array() > workspace_upper.array()).any());
+  }
 };
 
 /// What a joint of the scene's robot should do (parallel to the robot's coordinates).
