@@ -9,6 +9,7 @@ int orderPds(const Arguments& args);
 int orderFilippov(const Arguments& args);
 int ocpFilippov(const Arguments& args);
 int signOcp(const Arguments& args);
+int sensitivity(const Arguments& args);
 int derivatives(const Arguments& args);
 int ocpManipulation(const Arguments& args);
 int ocpAccuracy(const Arguments& args);

@@ -129,6 +129,16 @@ const std::map<std::string, Command>& commands() {
         "    homotopy or one relaxed NLP at a fixed sigma, or by OcpSolver from constant guesses,\n"
         "    CSV. --methods=fesd,standard --strategies=homotopy,fixed,ocp-solver\n"
         "    --fixed-sigma=1e-15 --guesses=-2.5,-2,...,2"}},
+      {"sensitivity",
+       {fesd_bench::sensitivity,
+        "Sensitivities of simulations (Nurkanovic et al. 2024, Fig. 9), CSV: --table=sweep: "
+        "x(T), V(x0)\n"
+        "    and their derivatives for x' = 2 - sign(x) over x0 in [-2, 1], FESD, standard, "
+        "analytic;\n"
+        "    --table=order: dx(T)/dx0's error vs steps (sign, spiral); --table=scenes: random "
+        "push scenes,\n"
+        "    defined or not, against central differences, wall-time ratio with/without.\n"
+        "    --steps=25 --points=121 --grids=4,8,...,256 --first-seed=0 --scenes=24 --repeat=5"}},
       {"order-pds",
        {fesd_bench::orderPds,
         "Example 1 (Pozharskiy et al. 2024): terminal error vs step for FESD and standard, "

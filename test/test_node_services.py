@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Integration tests of the fesd_trajopt node: services, statuses, markers, concurrency."""
 import math
+import os
 import random
+import subprocess
 import threading
 import unittest
 
@@ -103,7 +105,8 @@ def random_request(rng):
 def random_simulate_request(rng):
     """A Simulate request with random, often broken commands and sizes."""
     nasty = [0.0, 1e300, float("inf"), float("nan")]
-    request = SimulateRequest(system=rng.choice(["", "", "circle_example", "pendulum"]))
+    request = SimulateRequest(system=rng.choice(["", "", "circle_example", "pendulum", "spiral"]),
+                              sensitivities=rng.random() < 0.5)
     request.urdf_param = "/three_disc_scene"
     request.bodies = [body("pusher", role=rng.choice([0, 1, 2]))]
     for _ in range(rng.randint(0, 2)):
@@ -491,6 +494,95 @@ class NodeServices(unittest.TestCase):
         self.assertAlmostEqual(final["puck"].x, 1.0, delta=1e-6)
         contact = [e for e in response.solution.switches if e.kind == SwitchEvent.CONTACT]
         self.assertAlmostEqual(contact[0].time, 1.0, delta=1e-6)
+
+    def block(self, array, *index):
+        """One entry of a row-major Float64MultiArray."""
+        offset = sum(i * d.stride // (d.size or 1) for i, d in zip(index, array.layout.dim))
+        return array.data[offset]
+
+    def test_simulate_returns_the_exact_sensitivity_across_a_crossing(self):
+        # x' = 2 - sign(x) from -1: x(T) = T + x0 / 3 after the crossing at -x0 / 3.
+        request = SimulateRequest(system="two_minus_sign", sensitivities=True)
+        request.has_num_steps, request.num_steps = True, 10
+        response = self.simulate(request)
+        self.assertEqual(response.status, SUCCESS, response.message)
+        sensitivities = response.sensitivities
+        self.assertTrue(sensitivities.all_defined, sensitivities.undefined_reason)
+        self.assertEqual(sensitivities.state_names, ["x"])
+        by_start = sensitivities.state_by_initial_state
+        self.assertEqual([(d.label, d.size) for d in by_start.layout.dim],
+                         [("step", 10), ("state", 1), ("initial_state", 1)])
+        self.assertAlmostEqual(self.block(by_start, 9, 0, 0), 1.0 / 3.0, delta=1e-8)
+        self.assertAlmostEqual(self.block(by_start, 0, 0, 0), 1.0, delta=1e-10)  # before it
+        self.assertEqual(len(sensitivities.switch_time_by_initial_state.data),
+                         len(response.solution.switches))
+        for derivative in sensitivities.switch_time_by_initial_state.data:
+            self.assertAlmostEqual(derivative, -1.0 / 3.0, delta=1e-8)
+        request.initial_state = [-0.5]
+        moved = self.simulate(request)
+        self.assertAlmostEqual(moved.solution.states[-1], 2.0 - 0.5 / 3.0, delta=1e-9)
+
+    def test_simulate_a_push_returns_the_saltation_of_the_projection(self):
+        # The pusher (at -3, 2 m/s) meets the puck at t = 1 inside the third step of 0.4 s; from
+        # then on both move at 1 m/s: the puck gains half of every shift of either start and
+        # half of every extra metre the pusher is commanded.
+        request = SimulateRequest(sensitivities=True)
+        request.urdf_param = "/three_disc_scene"
+        request.bodies = [body("pusher", role=BodySpec.ROLE_ACTUATED),
+                          body("far", add=True, radius=0.5, initial_position=Point(0, -8, 0))]
+        request.commands = [BodyTrajectory(name="pusher", controls=[Vector3(2.0, 0, 0)])]
+        request.has_horizon, request.horizon = True, 2.0
+        request.has_num_steps, request.num_steps = True, 5
+        response = self.simulate(request)
+        self.assertEqual(response.status, SUCCESS, response.message)
+        sensitivities = response.sensitivities
+        self.assertTrue(sensitivities.all_defined, sensitivities.undefined_reason)
+        names, controls = sensitivities.state_names, sensitivities.control_names
+        puck_x, pusher_x = names.index("puck/x"), names.index("pusher/x")
+        by_start, by_controls = sensitivities.state_by_initial_state, sensitivities.state_by_controls
+        self.assertAlmostEqual(self.block(by_start, 4, puck_x, pusher_x), 0.5, delta=1e-8)
+        self.assertAlmostEqual(self.block(by_start, 4, puck_x, puck_x), 0.5, delta=1e-8)
+        far_y = names.index("far/y")  # out of reach: it stays where it starts
+        self.assertEqual(self.block(by_start, 4, far_y, far_y), 1.0)
+        self.assertEqual(self.block(by_start, 4, puck_x, far_y), 0.0)
+        push = controls.index("pusher/vx")
+        for step in range(5):
+            self.assertAlmostEqual(self.block(by_controls, 4, puck_x, step * len(controls) + push),
+                                   0.2, delta=1e-8)
+            self.assertEqual(self.block(by_controls, 0, puck_x, step * len(controls) + push), 0.0)
+
+    def test_the_gradient_step_example_lowers_its_cost(self):
+        script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts",
+                              "gradient_step_demo.py")
+        run = subprocess.run(["/usr/bin/python3", script, "--iterations", "4"],
+                             capture_output=True, text=True, timeout=120)
+        self.assertEqual(run.returncode, 0, run.stdout + run.stderr)
+        costs = [float(line.split("cost ")[1].split(",")[0]) for line in run.stdout.splitlines()]
+        self.assertEqual(len(costs), 4, run.stdout)
+        self.assertLess(costs[-1], 0.5 * costs[0], run.stdout)
+
+    def test_sensitivities_beyond_the_limits_are_refused_and_the_node_keeps_serving(self):
+        crowded = SimulateRequest(sensitivities=True)
+        crowded.urdf = '<robot name="empty"><link name="world"/></robot>'
+        crowded.bodies = [body("pusher", add=True, radius=0.1, initial_position=Point(0, 0, 0),
+                               role=BodySpec.ROLE_ACTUATED)]
+        crowded.bodies += [body("b%d" % i, add=True, radius=0.1, initial_position=Point(i, 5, 0))
+                           for i in range(29)]
+        crowded.has_num_steps, crowded.num_steps = True, 200
+        refused = self.simulate(crowded)
+        self.assertEqual(refused.status, INVALID_REQUEST, refused.message)
+        self.assertIn("max_sensitivity_entries", refused.message)
+        for system, start, keyword in [("spiral", [1.0], "initial_state"),
+                                       ("two_minus_sign", [float("nan")], "finite"),
+                                       ("", [0.0], "built-in systems")]:
+            request = SimulateRequest(system=system, initial_state=start, sensitivities=True)
+            request.urdf_param = "/three_disc_scene"
+            response = self.simulate(request)
+            self.assertEqual(response.status, INVALID_REQUEST, response.message)
+            self.assertIn(keyword, response.message)
+        after = self.simulate(SimulateRequest(system="spiral", sensitivities=True))
+        self.assertEqual(after.status, SUCCESS, after.message)
+        self.assertTrue(after.sensitivities.all_defined, after.sensitivities.undefined_reason)
 
 
 if __name__ == "__main__":

@@ -20,7 +20,7 @@ DEBIAN_PACKAGES=(
   coinor-libipopt-dev libsuitesparse-dev libmetis-dev libeigen3-dev libgtest-dev libsiconos-kernel-dev
   liborocos-kdl-dev libkdl-parser-dev libtrajectory-msgs-dev libsensor-msgs-dev python3-trajectory-msgs
   python3-sensor-msgs ros-robot-state-publisher ros-trajectory-msgs ros-sensor-msgs
-  gnuplot-nox python3-matplotlib xvfb imagemagick clang-format
+  gnuplot-nox python3-matplotlib python3-numpy xvfb imagemagick clang-format
 )
 
 install_dependencies() {

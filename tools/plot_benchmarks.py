@@ -2,8 +2,8 @@
 """Plots the benchmark CSVs of docs/benchmarks/ into PNGs beside them (matplotlib, Agg).
 
 Usage: plot_benchmarks.py [directory]. Reads what exists of order_pds.csv, siconos_example1.csv,
-ocp_accuracy.csv, scaling.csv, order_filippov.csv, ocp_filippov.csv and sweep_accuracy.csv; a
-missing file skips its plots.
+ocp_accuracy.csv, scaling.csv, order_filippov.csv, ocp_filippov.csv, sensitivity_sweep.csv,
+sensitivity_order.csv and sweep_accuracy.csv; a missing file skips its plots.
 """
 import csv
 import os
@@ -43,6 +43,14 @@ def series(rows, key):
     return groups
 
 
+def save_with_grids(figure, axes, directory, name):
+    """Every axis gridded, with its legend; then save()."""
+    for axis in axes:
+        axis.grid(True, which="both", alpha=0.3)
+        axis.legend(fontsize=7)
+    save(figure, directory, name)
+
+
 def save(figure, directory, name):
     path = os.path.join(directory, name)
     figure.tight_layout()
@@ -80,10 +88,7 @@ def plot_example1(directory, order_rows, peer_rows):
                 title="Example 1: error vs step (Radau-IIA)")
     axes[1].set(xlabel="CPU time [s]", ylabel="terminal error",
                 title="Example 1: error vs CPU time")
-    for axis in axes:
-        axis.grid(True, which="both", alpha=0.3)
-        axis.legend(fontsize=7)
-    save(figure, directory, "example1_work_precision.png")
+    save_with_grids(figure, axes, directory, "example1_work_precision.png")
 
 
 def plot_work_precision(axis, rows):
@@ -173,6 +178,41 @@ def plot_sweep_accuracy(directory, rows):
     save(figure, directory, "sweep_accuracy.png")
 
 
+METHOD_STYLES = {"analytic": ("black", "-", "analytic"), "fesd": ("tab:blue", "--", "FESD"),
+                 "standard": ("tab:red", ":", "standard time-stepping")}
+
+
+def plot_sensitivity(directory, sweep_rows, order_rows):
+    """Nurkanovic et al. 2024 Fig. 9 and beyond: V(x0) = (x(2) - 5/3)^2 and dV/dx0 for
+    x' = 2 - sign(x) by FESD, standard time-stepping and in closed form; and the error of
+    dx(T)/dx0 against the step for that system and the spiral (eq. 47), both methods."""
+    figure, axes = plt.subplots(1, 3, figsize=(15, 4.5))
+    for method, (color, style, label) in METHOD_STYLES.items():
+        rows = sorted((r for r in sweep_rows if r["method"] == method), key=lambda r: float(r["x0"]))
+        x0 = [float(r["x0"]) for r in rows]
+        axes[0].plot(x0, [float(r["value"]) for r in rows], style, color=color, label=label)
+        axes[1].plot(x0, [float(r["dvalue"]) for r in rows], style, color=color, label=label)
+    axes[0].set(xlabel="x0", ylabel="V(x0) = (x(2) - 5/3)^2",
+                title="x' = 2 - sign(x): the value (25 steps)")
+    axes[1].set(xlabel="x0", ylabel="dV/dx0 (the simulation's sensitivity)",
+                title="its derivative: FESD exact, time-stepping not")
+    markers = {"two_minus_sign": "o", "spiral": "s"}
+    for (system, method), rows in sorted(series(order_rows,
+                                                lambda r: (r["system"], r["method"])).items()):
+        rows = [r for r in rows if r["status"] == "success" and r["sensitivity_error"] != "nan"]
+        color, style, label = METHOD_STYLES[method]
+        axes[2].loglog([float(r["step"]) for r in rows],
+                       [max(float(r["sensitivity_error"]), 1e-16) for r in rows], style,
+                       marker=markers[system], color=color, label="%s, %s" % (label, system))
+    steps = [float(r["step"]) for r in order_rows]
+    if steps:
+        reference = [3e0 * (h / max(steps)) ** 3 for h in sorted(steps)]
+        axes[2].loglog(sorted(steps), reference, color="gray", linewidth=0.8, label="order 3")
+    axes[2].set(xlabel="step h", ylabel="relative error of dx(T)/dx0",
+                title="sensitivity error against the step (Radau IIA, n_s = 2)")
+    save_with_grids(figure, axes, directory, "sensitivity.png")
+
+
 def main():
     directory = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
         os.path.dirname(os.path.abspath(__file__)), "..", "docs", "benchmarks")
@@ -189,6 +229,10 @@ def main():
     filippov_ocp = read(directory, "ocp_filippov.csv")
     if filippov_orders or filippov_ocp:
         plot_filippov(directory, filippov_orders, filippov_ocp)
+    sensitivity_sweep = read(directory, "sensitivity_sweep.csv")
+    sensitivity_order = read(directory, "sensitivity_order.csv")
+    if sensitivity_sweep or sensitivity_order:
+        plot_sensitivity(directory, sensitivity_sweep, sensitivity_order)
     sweep_rows = read(directory, "sweep_accuracy.csv")
     if sweep_rows:
         plot_sweep_accuracy(directory, sweep_rows)

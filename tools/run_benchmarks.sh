@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates every benchmark table and plot in docs/benchmarks/ (CSV + PNG): installs what is
 # missing, builds (Release), runs the sweeps, plots. Took 30 min on the 2-core machine (docs/benchmarks/README.md).
-# tools/run_benchmarks.sh [order|siconos|ocp|scaling|filippov|sweep ...] (default: all of them)
+# tools/run_benchmarks.sh [order|siconos|ocp|scaling|filippov|sensitivity|sweep ...] (default: all)
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 install_dependencies
 build_workspace
@@ -9,7 +9,7 @@ source_workspace
 OUT="$REPO_DIR/docs/benchmarks"
 mkdir -p "$OUT"
 PARTS=("$@")
-((${#PARTS[@]})) || PARTS=(order siconos ocp scaling filippov sweep)
+((${#PARTS[@]})) || PARTS=(order siconos ocp scaling filippov sensitivity sweep)
 for part in "${PARTS[@]}"; do
   echo "== $part"
   case "$part" in
@@ -36,12 +36,18 @@ for part in "${PARTS[@]}"; do
       rosrun fesd_trajopt fesd_bench ocp-filippov >"$OUT/ocp_filippov.csv"
       rosrun fesd_trajopt fesd_bench sign-ocp >"$OUT/sign_ocp.csv"
       ;;
+    sensitivity)
+      rosrun fesd_trajopt fesd_bench sensitivity --table=sweep >"$OUT/sensitivity_sweep.csv"
+      rosrun fesd_trajopt fesd_bench sensitivity --table=order >"$OUT/sensitivity_order.csv"
+      rosrun fesd_trajopt fesd_bench sensitivity --table=scenes >"$OUT/sensitivity_scenes.csv"
+      ;;
     sweep)
       rosrun fesd_trajopt fesd_bench sweep-accuracy --scenes=8 >"$OUT/sweep_accuracy.csv"
       rosrun fesd_trajopt fesd_bench sweep-accuracy --families=cluttered --scenes=4 |
         tail -n +2 >>"$OUT/sweep_accuracy.csv"
       ;;
-    *) echo "unknown part '$part' (order, siconos, ocp, scaling, filippov, sweep)" >&2; exit 2 ;;
+    *) echo "unknown part '$part' (order, siconos, ocp, scaling, filippov, sensitivity, sweep)" >&2
+      exit 2 ;;
   esac
 done
 "$ROS_PYTHON" "$REPO_DIR/tools/plot_benchmarks.py" "$OUT"

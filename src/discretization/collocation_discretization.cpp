@@ -116,6 +116,16 @@ void CollocationDiscretization::addStartState() {
   start_state_ = nlp_.addVariables(nx_, -kInf, kInf);
 }
 
+Eigen::SparseMatrix<double> CollocationDiscretization::startAndControlDerivatives() const {
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int d = 0; d < nx_; ++d) entries.emplace_back(start_state_ + d, d, 1.0);
+  for (int d = 0; d < nu_; ++d) entries.emplace_back(grid_.controls.front() + d, nx_ + d, 1.0);
+  addStartDataDerivatives(entries);
+  Eigen::SparseMatrix<double> derivatives(nlp_.numVariables(), nx_ + nu_);
+  derivatives.setFromTriplets(entries.begin(), entries.end());
+  return derivatives;
+}
+
 void CollocationDiscretization::fixStartState(const Eigen::VectorXd& x0) {
   if (x0.size() != nx_) throw std::invalid_argument("initial state has the wrong size");
   ocp_.initial_state = x0;

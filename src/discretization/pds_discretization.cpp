@@ -274,6 +274,17 @@ void PdsDiscretization::setInitialState(const Eigen::VectorXd& x0) {
   }
 }
 
+void PdsDiscretization::addStartDataDerivatives(
+    std::vector<Eigen::Triplet<double>>& entries) const {
+  const SmoothFunction& constraints = *model_->constraints();
+  const SparsityPattern& pattern = constraints.jacobianPattern();
+  std::vector<double> values(pattern.nonzeros());
+  constraints.evaluateJacobian(ocp_.initial_state.data(), values.data());
+  for (int e = 0; e < pattern.nonzeros(); ++e) {
+    entries.emplace_back(start_.s + pattern.rows[e], pattern.cols[e], values[e]);
+  }
+}
+
 void PdsDiscretization::setInitialMultipliers(const Eigen::VectorXd& lambda0) {
   if (lambda0.size() != nc_) throw std::invalid_argument("initial multipliers have the wrong size");
   for (int k = 0; k < nc_; ++k) {
@@ -411,6 +422,22 @@ void PdsDiscretization::readPairValues(const double* x, Trajectory& trajectory) 
           *model_->constraints(), tableau_.c, trajectory.states[e], element.stage_states);
     }
   }
+}
+
+bool PdsDiscretization::grazesBetweenStages(const Trajectory& piece, int element, int pair,
+                                            double tolerance) const {
+  const ElementValues& values = piece.elements[element];
+  // Between samples a distance can dip below the lowest sampled one by about its curvature
+  // times (moved * sample spacing)^2 / 8: far below `moved`^2 for contact distances of 1 cm and
+  // up. Farther than that, the search is not needed.
+  const double moved =
+      (values.stage_states.colwise() - piece.states[element]).colwise().norm().maxCoeff();
+  if (values.lowest_constraints.size() > pair &&
+      values.lowest_constraints(pair) > moved * moved + tolerance) {
+    return false;
+  }
+  return closestApproach(*model_->constraints(), pair, tableau_.c, piece.states[element],
+                         values.stage_states) <= tolerance;
 }
 
 std::vector<bool> PdsDiscretization::activeAtStart(const double* x, const Trajectory&,

@@ -118,6 +118,54 @@ Eigen::VectorXd lowestConstraintBetweenStages(const SmoothFunction& constraints,
   return lowest;
 }
 
+double closestApproach(const SmoothFunction& constraints, int constraint,
+                       const Eigen::VectorXd& nodes, const Eigen::VectorXd& start_state,
+                       const Eigen::MatrixXd& stage_states, int samples_per_gap) {
+  const SparsityPattern& pattern = constraints.jacobianPattern();
+  Eigen::VectorXd c(constraints.outputSize());
+  std::vector<double> jacobian(pattern.nonzeros());
+  const auto distance = [&](double t) {
+    const Eigen::VectorXd state = collocationState(nodes, start_state, stage_states, t);
+    constraints.evaluate(state.data(), c.data());
+    constraints.evaluateJacobian(state.data(), jacobian.data());
+    double squared_norm = 0.0;
+    for (int i = 0; i < pattern.nonzeros(); ++i) {
+      if (pattern.rows[i] == constraint) squared_norm += jacobian[i] * jacobian[i];
+    }
+    return c(constraint) / std::max(std::sqrt(squared_norm), std::numeric_limits<double>::min());
+  };
+  const int samples = static_cast<int>(nodes.size()) * (samples_per_gap + 1);
+  int lowest = 0;
+  double lowest_value = distance(0.0);
+  for (int i = 1; i <= samples; ++i) {
+    const double value = distance(static_cast<double>(i) / samples);
+    if (value < lowest_value) {
+      lowest = i;
+      lowest_value = value;
+    }
+  }
+  double a = std::max(0.0, (lowest - 1.0) / samples), b = std::min(1.0, (lowest + 1.0) / samples);
+  const double ratio = (std::sqrt(5.0) - 1.0) / 2.0;
+  double x1 = b - ratio * (b - a), x2 = a + ratio * (b - a);
+  double f1 = distance(x1), f2 = distance(x2);
+  while (b - a > 1e-9) {
+    if (f1 < f2) {
+      b = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = b - ratio * (b - a);
+      f1 = distance(x1);
+    } else {
+      a = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = a + ratio * (b - a);
+      f2 = distance(x2);
+    }
+  }
+  return std::min({lowest_value, f1, f2});
+}
+
 std::vector<UnresolvedSwitch> findUnresolvedSwitches(const std::vector<ElementValues>& elements,
                                                      double activity_tolerance,
                                                      double penetration_tolerance) {

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "fesd_trajopt/discretization/stewart_discretization.h"
 #include "fesd_trajopt/function/quadratic_function.h"
 
@@ -52,6 +54,21 @@ Eigen::Vector2d exactState(double t) {
          Eigen::Vector2d(std::cos(kOmega * (t - 1.0)), std::sin(kOmega * (t - 1.0)));
 }
 
+Eigen::Matrix2d exactSensitivity(const Eigen::Vector2d& x0, double t) {
+  const auto flow = [](double time, double angular) {
+    return Eigen::Matrix2d(std::exp(time) * Eigen::Rotation2Dd(angular * time).toRotationMatrix());
+  };
+  const double t_switch = -std::log(x0.norm());
+  const Eigen::Vector2d x_switch = flow(t_switch, -kOmega) * x0;
+  Eigen::Matrix2d inside, outside;
+  inside << 1.0, kOmega, -kOmega, 1.0;
+  outside << 1.0, -kOmega, kOmega, 1.0;
+  const Eigen::Vector2d f1 = inside * x_switch, f2 = outside * x_switch, n = 2.0 * x_switch;
+  const Eigen::Matrix2d saltation =
+      Eigen::Matrix2d::Identity() + (f2 - f1) * n.transpose() / n.dot(f1);
+  return flow(t - t_switch, kOmega) * saltation * flow(t_switch, -kOmega);
+}
+
 }  // namespace spiral_example
 
 namespace sign_example {
@@ -77,6 +94,14 @@ struct Identity {
 std::shared_ptr<const StewartModel> model() {
   static const auto instance = makeSwitchingModel(1, 0, {1}, Modes{}, Identity{}, "two_minus_sign");
   return instance;
+}
+
+double exactState(double x0, double t) {
+  return x0 >= 0.0 ? x0 + t : t + x0 / 3.0;
+}
+
+double exactSensitivity(double x0) {
+  return x0 >= 0.0 ? 1.0 : 1.0 / 3.0;
 }
 
 double optimalInitialState() {

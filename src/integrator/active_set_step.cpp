@@ -157,6 +157,7 @@ ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vecto
             modes == predicted ? ActiveSetOutcome::kPredicted : ActiveSetOutcome::kLocated;
         step.report = solvedReport(nlp, std::move(x));
         step.piece = std::move(piece);
+        step.modes = std::move(modes);
         return step;
       }
       step.failure = "a bound or row is violated by " + std::to_string(violation);

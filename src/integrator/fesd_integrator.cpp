@@ -8,6 +8,7 @@
 #include <tuple>
 #include <utility>
 
+#include "fesd_trajopt/integrator/sensitivity_chain.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 
 namespace fesd {
@@ -44,8 +45,12 @@ int rank(const MpccReport& report, const RelaxedMpcc& nlp) {
 /// first needed), the solvers, and the result so far.
 class FesdIntegrator::Run {
  public:
-  Run(const FesdIntegrator& integrator, const Eigen::VectorXd& x0, double step_length)
-      : options_(integrator.options_), state_(x0) {
+  Run(const FesdIntegrator& integrator, const Eigen::VectorXd& x0, double step_length,
+      int num_steps)
+      : options_(integrator.options_),
+        state_(x0),
+        sensitivities_(integrator.model_->stateSize(), integrator.model_->controlSize(),
+                       num_steps) {
     step_problem_.model = integrator.model_;
     step_problem_.initial_state = x0;
     step_problem_.horizon = step_length;
@@ -56,9 +61,16 @@ class FesdIntegrator::Run {
   /// Solves user step k (of length h) under control u.
   bool step(int k, const Eigen::VectorXd& u) {
     split_ = false;
+    step_ = k;
     const bool ok = solve(0, 0, u, k * step_problem_.horizon);
     result.split_steps += split_;
+    sensitivities_.endStep();
     return ok;
+  }
+
+  /// The sensitivities of the whole run, with those of its switch times.
+  SimulationSensitivities sensitivities() const {
+    return sensitivities_.finish(result.trajectory.switches);
   }
 
   const std::string& failure() const { return failure_; }
@@ -84,6 +96,9 @@ class FesdIntegrator::Run {
     Trajectory piece;
     bool retried = false;
     ActiveSetOutcome path = ActiveSetOutcome::kFailed;  ///< kFailed: the homotopy solved it
+    Discretization* discretization = nullptr;           ///< whose solution it is
+    PairModes modes;           ///< the modes its solution takes (SimulationOptions::sensitivities)
+    bool fixed_steps = false;  ///< integrated with fixed steps where FESD found no solution
   };
 
   /// Solves [start_time, start_time + length) under control u from the current state, where
@@ -116,6 +131,7 @@ class FesdIntegrator::Run {
       fixed.report.addEffort(attempt.report);
       if (fixed.report.converged()) {
         attempt = std::move(fixed);
+        attempt.fixed_steps = true;
         ++result.fixed_step_parts;
       }
     }
@@ -125,6 +141,7 @@ class FesdIntegrator::Run {
     result.homotopy_parts += attempt.path == ActiveSetOutcome::kFailed;
     result.totals.accumulate(attempt.report);
     result.step_histories.push_back(attempt.report.history);
+    if (options_.sensitivities) addSensitivity(attempt);
     result.trajectory.append(attempt.piece);
     state_ = attempt.piece.finalState();
     previous_control_ = u;
@@ -161,6 +178,43 @@ class FesdIntegrator::Run {
     }
   }
 
+  /// The sensitivities of an accepted part, chained to the run's.
+  void addSensitivity(const Attempt& attempt) {
+    const bool fesd = attempt.discretization->stepsAreFree();
+    if (fesd && !result.trajectory.elements.empty()) {
+      const std::string at_end = switchAtEnd(result.trajectory, options_.activity_tolerance);
+      if (!at_end.empty()) {
+        sensitivities_.stopDefining("step " + std::to_string(step_) + ": " + at_end);
+      }
+    }
+    StepSensitivity part;
+    if (sensitivities_.defined()) part = partSensitivity(attempt, fesd);
+    sensitivities_.addPart(part, step_, static_cast<int>(attempt.piece.elements.size()));
+  }
+
+  /// The sensitivities of a part by its own start state and control. Time-stepping (switch
+  /// detection off) places switches at stage points, so only FESD's parts are checked for pairs
+  /// that touch without switching.
+  StepSensitivity partSensitivity(const Attempt& attempt, bool fesd) {
+    StepSensitivity part;
+    if (!attempt.report.converged()) {
+      part.why_undefined = "its solve did not converge";
+    } else if (attempt.fixed_steps) {
+      part.why_undefined = "integrated with fixed steps where FESD found no solution";
+    } else if (fesd) {
+      const std::vector<bool> active_before =
+          result.trajectory.elements.empty()
+              ? std::vector<bool>{}
+              : activeAtEnd(result.trajectory, options_.activity_tolerance);
+      part.why_undefined = degeneracy(*attempt.discretization, attempt.piece, attempt.modes,
+                                      active_before, options_.activity_tolerance);
+    }
+    if (!part.why_undefined.empty()) return part;
+    return stepSensitivity(*attempt.discretization, attempt.report.solution, attempt.modes,
+                           static_cast<int>(state_.size()),
+                           options_.homotopy.complementarity_tolerance, sensitivity_newton_);
+  }
+
   /// One part from the current state: the homotopy, and its retry path if that is not exact.
   Attempt solvePart(Part& part, const Eigen::VectorXd& u, double start_time) {
     Discretization& discretization = *part.discretization;
@@ -176,6 +230,7 @@ class FesdIntegrator::Run {
             : discretization.translatedGuess(part.previous_solution);
     const RelaxedMpcc& nlp = discretization.nlp();
     Attempt attempt;
+    attempt.discretization = &discretization;
     // Out of time, the homotopy reports the timeout (with its interrupted iterate).
     if (options_.active_set_steps && remainingBudget() != 0.0 &&
         (discretization.stepsAreFree() || nlp.numComplementarities() == 0)) {
@@ -197,6 +252,7 @@ class FesdIntegrator::Run {
         attempt.report = std::move(fast.report);
         attempt.piece = std::move(fast.piece);
         attempt.path = fast.outcome;
+        attempt.modes = std::move(fast.modes);
         part.previous_solution = attempt.report.solution;
         return attempt;
       }
@@ -218,6 +274,11 @@ class FesdIntegrator::Run {
     attempt.piece =
         discretization.extract(attempt.report.solution.data(), start_time,
                                options_.activity_tolerance, options_.penetration_tolerance);
+    if (options_.sensitivities) {
+      attempt.modes =
+          modesOf(attempt.piece, discretization.activeAt(state_, options_.activity_tolerance),
+                  options_.activity_tolerance);
+    }
     return attempt;
   }
 
@@ -256,12 +317,16 @@ class FesdIntegrator::Run {
   std::unique_ptr<MpccSolver> solver_, retry_solver_;  ///< the homotopy and its retry path
   /// Newton on the active sets; it keeps the factorisation's structure from step to step.
   SquareNewton newton_;
+  /// The sensitivities' own: the stepping's factorisations (and so its path) stay as without.
+  SquareNewton sensitivity_newton_;
   Eigen::VectorXd state_;
   Eigen::VectorXd previous_control_;  ///< of the last part in the trajectory
   /// By (tenths, middles, kind); a map's references stay valid as parts are added.
   std::map<std::tuple<int, int, Kind>, Part> parts_;
   bool split_ = false;  ///< the current step was split
+  int step_ = 0;        ///< the step being solved
   std::string failure_;
+  SensitivityChain sensitivities_;
 };
 
 FesdIntegrator::FesdIntegrator(std::shared_ptr<const DynamicsModel> model,
@@ -278,7 +343,7 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
         (controls.empty() && nu == 0))) {
     throw std::invalid_argument("FesdIntegrator: give one control per step or a single one");
   }
-  Run run(*this, x0, horizon / num_steps);
+  Run run(*this, x0, horizon / num_steps, num_steps);
   SimulationResult& result = run.result;
   for (int step = 0; step < num_steps; ++step) {
     const Eigen::VectorXd u =
@@ -312,6 +377,7 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
   if (!result.trajectory.switchesResolved()) {
     result.message += "; " + describeUnresolvedSwitches(result.trajectory.unresolved_switches);
   }
+  if (options_.sensitivities) result.sensitivities = run.sensitivities();
   result.totals.status = result.status;
   result.totals.message = result.message;
   result.totals.wall_seconds = run.wallSeconds();

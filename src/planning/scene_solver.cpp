@@ -462,6 +462,9 @@ SceneOutcome simulateSceneTask(SceneTask task, const std::vector<Eigen::VectorXd
   outcome.message = result.message;
   outcome.trajectory = fullSceneTrajectory(task, part, result.trajectory);
   outcome.report = result.totals;
+  if (options.sensitivities) {
+    outcome.sensitivities = fullSceneSensitivities(task, part, result.sensitivities);
+  }
   return outcome;
 }
 

@@ -114,6 +114,8 @@ NodeConfig loadNodeConfig(const ros::NodeHandle& node) {
   node.param("limits/max_stages", c.limits.max_stages, c.limits.max_stages);
   node.param("limits/max_horizon", c.limits.max_horizon, c.limits.max_horizon);
   node.param("limits/max_solver_mib", c.limits.max_solver_mib, c.limits.max_solver_mib);
+  node.param("limits/max_sensitivity_entries", c.max_sensitivity_entries,
+             c.max_sensitivity_entries);
   node.param("scene_urdf", c.scene_urdf, std::string());
   XmlRpc::XmlRpcValue bodies;
   if (node.getParam("bodies", bodies)) {

@@ -47,6 +47,8 @@ struct NodeConfig {
   /// ~solver_threads: requests (services and action goals) solved at once; 0: one per core.
   int solver_threads = 0;
   fesd::TaskLimits limits;
+  /// ~limits/max_sensitivity_entries: the numbers a ~simulate answer's sensitivities may hold.
+  double max_sensitivity_entries = 4e6;
   std::map<std::string, BodyConfig> bodies;
   std::string scene_urdf;  ///< ~scene_urdf: the default scene
 };

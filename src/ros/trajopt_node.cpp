@@ -4,13 +4,16 @@
 #include <cctype>
 #include <cmath>
 #include <exception>
+#include <optional>
 
 #include "fesd_trajopt/examples/circle_example.h"
+#include "fesd_trajopt/examples/filippov_examples.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/planning/scene_solver.h"
 #include "fesd_trajopt/solver/heap_policy.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 #include "scene_request.h"
+#include "sensitivity_message.h"
 #include "solution_message.h"
 
 namespace fesd_ros {
@@ -189,6 +192,52 @@ std::string jointCommands(const trajectory_msgs::JointTrajectory& commands,
     }
   }
   return "";
+}
+
+/// A system ~simulate knows by name: its model, start, horizon and names.
+struct BuiltinSystem {
+  std::shared_ptr<const fesd::DynamicsModel> model;
+  Eigen::VectorXd initial_state;
+  double horizon;
+  std::vector<std::string> state_names;
+  std::vector<std::string> constraint_names;  ///< the switches' second side, per constraint
+};
+
+std::optional<BuiltinSystem> builtinSystem(const std::string& name) {
+  if (name == "circle_example") {
+    return BuiltinSystem{fesd::circle_example::model(),
+                         fesd::circle_example::initialState(),
+                         fesd::circle_example::horizon(),
+                         {"x1", "x2"},
+                         {"x2 >= -1"}};
+  }
+  if (name == "two_minus_sign") {
+    return BuiltinSystem{fesd::sign_example::model(),
+                         Eigen::VectorXd::Constant(1, -1.0),
+                         2.0,
+                         {"x"},
+                         {"x > 0", "x < 0"}};
+  }
+  if (name == "spiral") {
+    return BuiltinSystem{fesd::spiral_example::model(),
+                         fesd::spiral_example::initialState(),
+                         fesd::spiral_example::horizon(),
+                         {"x1", "x2"},
+                         {"|x| > 1", "|x| < 1"}};
+  }
+  return std::nullopt;
+}
+
+/// Why the sensitivities a request asks for are too many numbers to answer, or "".
+std::string sensitivitiesTooLarge(const fesd_trajopt::Simulate::Request& request, int state_size,
+                                  int control_size, int steps, double limit) {
+  const double entries = sensitivityEntries(state_size, control_size, steps);
+  if (!request.sensitivities || entries <= limit) return "";
+  return "the sensitivities of " + std::to_string(steps) + " steps of " +
+         std::to_string(state_size) + " states and " + std::to_string(control_size) +
+         " controls take " + std::to_string(static_cast<long long>(entries)) +
+         " numbers, more than ~limits/max_sensitivity_entries (" +
+         std::to_string(static_cast<long long>(limit)) + "): ask for fewer steps";
 }
 
 }  // namespace
@@ -378,33 +427,45 @@ void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
     return refuse(response,
                   "num_steps must be in 1.." + std::to_string(config_.limits.max_intervals));
   }
-  if (request.system == "circle_example") {
-    const double horizon = request.has_horizon ? request.horizon : fesd::circle_example::horizon();
+  options.sensitivities = request.sensitivities;
+  if (!request.system.empty()) {
+    const std::optional<BuiltinSystem> builtin = builtinSystem(request.system);
+    if (!builtin) {
+      return refuse(response,
+                    "unknown system '" + request.system +
+                        "' (\"\" for the scene, or circle_example, two_minus_sign, spiral)");
+    }
+    const double horizon = request.has_horizon ? request.horizon : builtin->horizon;
     if (!(horizon > 0.0) || !std::isfinite(horizon) || horizon > config_.limits.max_horizon) {
       return refuse(response, "the horizon must be > 0 and finite");
     }
-    fesd::FesdIntegrator integrator(fesd::circle_example::model(), options);
-    const fesd::SimulationResult result =
-        integrator.simulate(fesd::circle_example::initialState(), horizon, steps);
+    Eigen::VectorXd x0 = builtin->initial_state;
+    if (!request.initial_state.empty()) {
+      if (request.initial_state.size() != static_cast<size_t>(x0.size())) {
+        return refuse(response, request.system + " has " + std::to_string(x0.size()) +
+                                    " states; initial_state has " +
+                                    std::to_string(request.initial_state.size()));
+      }
+      x0 = Eigen::Map<const Eigen::VectorXd>(request.initial_state.data(), x0.size());
+      if (!x0.allFinite()) return refuse(response, "initial_state must be finite");
+    }
+    const std::string too_many = sensitivitiesTooLarge(request, static_cast<int>(x0.size()), 0,
+                                                       steps, config_.max_sensitivity_entries);
+    if (!too_many.empty()) return refuse(response, too_many);
+    fesd::FesdIntegrator integrator(builtin->model, options);
+    const fesd::SimulationResult result = integrator.simulate(x0, horizon, steps);
     fillCommon(result.trajectory, result.totals, response.solution);
     for (const fesd::SwitchEvent& event : result.trajectory.switches) {
-      fesd_trajopt::SwitchEvent message;
-      message.time = event.time;
-      message.first = "x";
-      message.second = "x2 >= -1";
-      message.kind = event.kind == fesd::SwitchEvent::Kind::kContact
-                         ? fesd_trajopt::SwitchEvent::CONTACT
-                         : fesd_trajopt::SwitchEvent::RELEASE;
-      response.solution.switches.push_back(message);
+      response.solution.switches.push_back(
+          switchMessage(event, "x", builtin->constraint_names.at(event.constraint)));
+    }
+    if (request.sensitivities) {
+      response.sensitivities = sensitivityMessage(result.sensitivities, builtin->state_names, {});
     }
     response.solution.message = result.message;
     response.solution.header.stamp = ros::Time::now();
     finish(response, {});
     return;
-  }
-  if (!request.system.empty()) {
-    return refuse(response, "unknown system '" + request.system +
-                                "' (\"\" for the scene, or \"circle_example\")");
   }
   TaskBuild build =
       buildTask(config_, sceneFields(request), {request.joints, false, ""}, private_node_);
@@ -412,6 +473,15 @@ void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
   fesd::SceneTask& task = build.task;
   if (request.has_horizon) task.horizon = request.horizon;
   task.num_intervals = steps;
+  if (!request.initial_state.empty()) {
+    return refuse(response,
+                  "initial_state is for built-in systems; a scene starts where its "
+                  "bodies and joints are");
+  }
+  const std::string too_many =
+      sensitivitiesTooLarge(request, task.scene.stateSize(), task.scene.controlSize(), steps,
+                            config_.max_sensitivity_entries);
+  if (!too_many.empty()) return refuse(response, too_many);
   std::vector<Eigen::VectorXd> controls(steps, Eigen::VectorXd::Zero(task.scene.controlSize()));
   std::string problem = bodyCommands(request.commands, task.scene, controls);
   if (problem.empty()) problem = jointCommands(request.joint_commands, task.scene, controls);
@@ -423,6 +493,10 @@ void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
   response.solution.message = outcome.message;
   response.solution.header.stamp = ros::Time::now();
   response.solution.header.frame_id = config_.frame_id;
+  if (request.sensitivities) {
+    response.sensitivities = sensitivityMessage(outcome.sensitivities, sceneStateNames(task.scene),
+                                                sceneControlNames(task.scene));
+  }
   response.solution.statistics.wall_time = stopwatch.wallSeconds();
   finish(response, build.notes);
 }

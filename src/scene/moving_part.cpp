@@ -1,6 +1,7 @@
 #include "fesd_trajopt/scene/moving_part.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace fesd {
 namespace {
@@ -36,6 +37,17 @@ Eigen::VectorXd partState(const SceneTask& full, const MovingPart& part,
         state.segment(full.scene.stateIndex(part.bodies[i]), dim);
   }
   return moving;
+}
+
+/// Per state component of the part, its index in the full scene's state.
+std::vector<int> fullStateIndices(const SceneTask& full, const MovingPart& part) {
+  const int dim = full.scene.dimension();
+  std::vector<int> indices;
+  for (int j = 0; j < full.scene.numJoints(); ++j) indices.push_back(j);
+  for (const int body : part.bodies) {
+    for (int d = 0; d < dim; ++d) indices.push_back(full.scene.stateIndex(body) + d);
+  }
+  return indices;
 }
 
 /// Per modelled pair of the part, its index in `pairs`, or -1.
@@ -109,6 +121,32 @@ Trajectory fullSceneTrajectory(const SceneTask& full, const MovingPart& part,
     }
     element.stage_states = stages;
   }
+  return result;
+}
+
+SimulationSensitivities fullSceneSensitivities(const SceneTask& full, const MovingPart& part,
+                                               const SimulationSensitivities& sensitivities) {
+  const std::vector<int> indices = fullStateIndices(full, part);
+  const int nx = full.scene.stateSize(), part_nx = static_cast<int>(indices.size());
+  // Rows of d(part) / d(part start, controls) as rows over (full start, controls).
+  const auto widen = [&](const Eigen::MatrixXd& rows) {
+    const int controls = static_cast<int>(rows.cols()) - part_nx;
+    Eigen::MatrixXd wide = Eigen::MatrixXd::Zero(rows.rows(), nx + controls);
+    if (!rows.allFinite()) wide.setConstant(std::numeric_limits<double>::quiet_NaN());
+    for (int j = 0; j < part_nx && rows.allFinite(); ++j) wide.col(indices[j]) = rows.col(j);
+    wide.rightCols(controls) = rows.rightCols(controls);
+    return wide;
+  };
+  SimulationSensitivities result = sensitivities;
+  for (size_t k = 0; k < sensitivities.states.size(); ++k) {
+    const Eigen::MatrixXd wide = widen(sensitivities.states[k]);
+    Eigen::MatrixXd& state = result.states[k];
+    state = Eigen::MatrixXd::Zero(nx, wide.cols());
+    if (!wide.allFinite()) state.setConstant(std::numeric_limits<double>::quiet_NaN());
+    for (int i = 0; i < nx && wide.allFinite(); ++i) state(i, i) = 1.0;  // frozen: its own start
+    for (int i = 0; i < part_nx; ++i) state.row(indices[i]) = wide.row(i);
+  }
+  for (Eigen::RowVectorXd& row : result.switch_times) row = widen(row);
   return result;
 }
 

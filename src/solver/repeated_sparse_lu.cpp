@@ -191,4 +191,30 @@ void RepeatedSparseLu::solve(std::vector<double>& b, std::vector<double>& x) con
   for (int k = 0; k < cols_; ++k) x[column_order_[k]] = b[k];
 }
 
+void RepeatedSparseLu::solve(std::vector<double>& b, std::vector<double>& x, int count) const {
+  // Row-major: each elimination updates `count` adjacent values, one pass over L and U.
+  const auto row = [count](std::vector<double>& v, int i) { return v.data() + i * count; };
+  work_rows_.assign(static_cast<size_t>(cols_) * count, 0.0);
+  for (int k = 0; k < cols_; ++k) {
+    const double* value = row(b, pivot_row_[k]);
+    for (int q = l_start_[k]; q < l_start_[k + 1]; ++q) {
+      double* target = row(b, l_rows_[q]);
+      for (int p = 0; p < count; ++p) target[p] -= l_values_[q] * value[p];
+    }
+    std::copy(value, value + count, row(work_rows_, k));
+  }
+  for (int k = cols_ - 1; k >= 0; --k) {
+    double* value = row(work_rows_, k);
+    for (int p = 0; p < count; ++p) value[p] /= u_diagonal_[k];
+    for (int q = u_start_[k]; q < u_start_[k + 1]; ++q) {
+      double* target = row(work_rows_, u_steps_[q]);
+      for (int p = 0; p < count; ++p) target[p] -= u_values_[q] * value[p];
+    }
+  }
+  x.resize(static_cast<size_t>(cols_) * count);
+  for (int k = 0; k < cols_; ++k) {
+    std::copy(row(work_rows_, k), row(work_rows_, k) + count, row(x, column_order_[k]));
+  }
+}
+
 }  // namespace fesd

@@ -125,13 +125,9 @@ bool SquareNewton::factorizeJacobian(const NlpProblem& nlp, const std::vector<do
   return factorized_;
 }
 
-NewtonResult SquareNewton::solve(const NlpProblem& nlp, std::vector<double>& x,
-                                 const std::vector<VariableTie>& ties) {
-  const bool same_system = readSystem(nlp);
-  for (size_t v = 0; v < x.size(); ++v) {
-    if (column_of_[v] < 0) x[v] = x_lower_[v];
-  }
-  NewtonResult result;
+bool SquareNewton::prepareSystem(const NlpProblem& nlp, const std::vector<double>& x,
+                                 const std::vector<VariableTie>& ties, bool same_system,
+                                 NewtonResult& result) {
   const int unknowns = static_cast<int>(free_variables_.size());
   jacobian_values_.resize(nlp.jacobianPattern().nonzeros());
   added_ties_.clear();
@@ -144,7 +140,7 @@ NewtonResult SquareNewton::solve(const NlpProblem& nlp, std::vector<double>& x,
   if (rows < unknowns) {
     result.failure = "not square: " + std::to_string(unknowns) + " free variables, " +
                      std::to_string(rows) + " equations";
-    return result;
+    return false;
   }
   const bool same_ties = added_ties_.size() == built_ties_.size() &&
                          std::equal(added_ties_.begin(), added_ties_.end(), built_ties_.begin(),
@@ -155,6 +151,19 @@ NewtonResult SquareNewton::solve(const NlpProblem& nlp, std::vector<double>& x,
     buildMatrix(nlp);
     factorized_ = false;
   }
+  return true;
+}
+
+NewtonResult SquareNewton::solve(const NlpProblem& nlp, std::vector<double>& x,
+                                 const std::vector<VariableTie>& ties) {
+  NewtonResult result;
+  const bool same_system = readSystem(nlp);
+  for (size_t v = 0; v < x.size(); ++v) {
+    if (column_of_[v] < 0) x[v] = x_lower_[v];
+  }
+  if (!prepareSystem(nlp, x, ties, same_system, result)) return result;
+  const int unknowns = static_cast<int>(free_variables_.size());
+  const int rows = static_cast<int>(equations_.size() + added_ties_.size());
   result.residual = evaluateResidual(nlp, x);
   bool fresh = false;  // lu_ factorises the Jacobian at the current x
   double last_step = std::numeric_limits<double>::infinity();
@@ -222,6 +231,66 @@ NewtonResult SquareNewton::solve(const NlpProblem& nlp, std::vector<double>& x,
     last_step = step_size;
   }
   result.failure = "no convergence in " + std::to_string(options_.max_iterations) + " iterations";
+  return result;
+}
+
+SolutionDerivatives SquareNewton::derivatives(const NlpProblem& nlp, const std::vector<double>& x,
+                                              const std::vector<VariableTie>& ties,
+                                              const Eigen::SparseMatrix<double>& fixed_derivatives,
+                                              const std::vector<int>& wanted) {
+  SolutionDerivatives result;
+  NewtonResult system;
+  if (!prepareSystem(nlp, x, ties, readSystem(nlp), system)) {
+    result.failure = system.failure;
+    return result;
+  }
+  const int rows = static_cast<int>(equations_.size() + added_ties_.size());
+  result.residual = evaluateResidual(nlp, x);
+  if (!factorizeJacobian(nlp, x)) {
+    result.failure = "singular Jacobian";
+    return result;
+  }
+  const SparsityPattern& pattern = nlp.jacobianPattern();
+  const int parameters = static_cast<int>(fixed_derivatives.cols());
+  result.values.resize(static_cast<int>(wanted.size()), parameters);
+  // The Jacobian entries of the equations in fixed variables that depend on the parameters.
+  fixed_column_.assign(nlp.numVariables(), 0.0);
+  for (int k = 0; k < fixed_derivatives.outerSize(); ++k) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(fixed_derivatives, k); it; ++it) {
+      if (column_of_[it.row()] < 0) fixed_column_[it.row()] = 1.0;
+    }
+  }
+  std::vector<int> data_entries;
+  for (int e = 0; e < pattern.nonzeros(); ++e) {
+    if (equation_of_[pattern.rows[e]] >= 0 && fixed_column_[pattern.cols[e]] != 0.0) {
+      data_entries.push_back(e);
+    }
+  }
+  std::fill(fixed_column_.begin(), fixed_column_.end(), 0.0);
+  // J_free dx_free/dp = -J_fixed dx_fixed/dp for all parameters at once (row-major right sides);
+  // tie rows hold free variables only.
+  right_side_.assign(static_cast<size_t>(rows) * parameters, 0.0);
+  for (int p = 0; p < parameters; ++p) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(fixed_derivatives, p); it; ++it) {
+      if (column_of_[it.row()] < 0) fixed_column_[it.row()] = it.value();
+    }
+    for (int e : data_entries) {
+      right_side_[equation_of_[pattern.rows[e]] * parameters + p] -=
+          jacobian_values_[e] * fixed_column_[pattern.cols[e]];
+    }
+    for (Eigen::SparseMatrix<double>::InnerIterator it(fixed_derivatives, p); it; ++it) {
+      fixed_column_[it.row()] = 0.0;
+    }
+  }
+  lu_.solve(right_side_, step_, parameters);
+  for (size_t w = 0; w < wanted.size(); ++w) {
+    const int column = column_of_[wanted[w]];
+    for (int p = 0; p < parameters; ++p) {
+      result.values(static_cast<int>(w), p) =
+          column >= 0 ? step_[column * parameters + p] : fixed_derivatives.coeff(wanted[w], p);
+    }
+  }
+  result.defined = true;
   return result;
 }
 

@@ -1,6 +1,7 @@
 // The sparse LU that Newton's method refactorises with the pivots of its first factorisation
 // (solver/repeated_sparse_lu.cpp): solutions against dense LU, reuse of the structure, fresh
-// pivots where a reused one became small, tall matrices and singular ones.
+// pivots where a reused one became small, tall matrices and singular ones, several right-hand
+// sides at once.
 #include <random>
 #include <vector>
 
@@ -96,6 +97,29 @@ TEST(RepeatedSparseLu, PicksAsManyRowsAsColumnsOfATallMatrix) {
   EXPECT_NEAR(x[1], 2.0, 1e-15);
   // More columns than rows is refused.
   EXPECT_FALSE(lu.factorize(Eigen::SparseMatrix<double>(matrix.transpose())));
+}
+
+TEST(RepeatedSparseLu, SolvesManyRightHandSidesAsEachOneAlone) {
+  std::mt19937 random(11);
+  const Eigen::SparseMatrix<double> matrix = randomMatrix(60, 60, random);
+  fesd::RepeatedSparseLu lu;
+  ASSERT_TRUE(lu.factorize(matrix));
+  const int count = 5;
+  const Eigen::MatrixXd truth = Eigen::MatrixXd::Random(60, count);
+  const Eigen::MatrixXd b = matrix * truth;
+  std::vector<double> rows(60 * count), x;
+  for (int i = 0; i < 60; ++i) {
+    for (int p = 0; p < count; ++p) rows[i * count + p] = b(i, p);
+  }
+  lu.solve(rows, x, count);
+  for (int p = 0; p < count; ++p) {
+    std::vector<double> single(b.col(p).data(), b.col(p).data() + 60), one;
+    lu.solve(single, one);
+    for (int i = 0; i < 60; ++i) {
+      EXPECT_DOUBLE_EQ(x[i * count + p], one[i]);
+      EXPECT_NEAR(x[i * count + p], truth(i, p), 1e-8 * truth.cwiseAbs().maxCoeff());
+    }
+  }
 }
 
 TEST(RepeatedSparseLu, ReportsASingularMatrix) {

@@ -151,3 +151,63 @@ TEST(SquareNewton, ANewSolveOfTheSameSystemStartsWithTheLastFactorisation) {
 }
 
 }  // namespace
+
+namespace {
+
+/// x^2 + y = p and x - y = -1 with the parameter p a fixed variable: at a root,
+/// dx/dp = dy/dp = 1 / (2 x + 1).
+struct ParametricParabola {
+  fesd::NlpAssembly nlp;
+  int x, y, p;
+  explicit ParametricParabola(double parameter) {
+    x = nlp.addVariables(1, -kInf, kInf);
+    y = nlp.addVariables(1, -kInf, kInf);
+    p = nlp.addVariables(1, parameter, parameter);
+    const int curve = nlp.addRows(1, 0.0, 0.0);
+    nlp.addLinear(curve, {{y, 1.0}, {p, -1.0}});
+    nlp.addFunctionTerm(fesd::makeAutoDiffFunction(1, 1, Square{}), {x}, -1, {{curve, 1.0}});
+    const int line = nlp.addRows(1, -1.0, -1.0);
+    nlp.addLinear(line, {{x, 1.0}, {y, -1.0}});
+    nlp.finalize();
+  }
+  Eigen::SparseMatrix<double> byParameter() const {
+    Eigen::SparseMatrix<double> derivatives(nlp.numVariables(), 1);
+    derivatives.insert(p, 0) = 1.0;
+    return derivatives;
+  }
+};
+
+TEST(SquareNewton, DerivativesAtARootAreThoseOfTheImplicitFunction) {
+  ParametricParabola problem(3.0);
+  std::vector<double> point{0.5, 0.5, 3.0};
+  fesd::SquareNewton newton;
+  ASSERT_TRUE(newton.solve(problem.nlp, point).converged);
+  EXPECT_NEAR(point[problem.x], 1.0, 1e-12);
+  const fesd::SolutionDerivatives derivatives = newton.derivatives(
+      problem.nlp, point, {}, problem.byParameter(), {problem.x, problem.y, problem.p});
+  ASSERT_TRUE(derivatives.defined) << derivatives.failure;
+  EXPECT_LT(derivatives.residual, 1e-12);
+  EXPECT_NEAR(derivatives.values(0, 0), 1.0 / 3.0, 1e-12);  // the root is exact to 1e-12
+  EXPECT_NEAR(derivatives.values(1, 0), 1.0 / 3.0, 1e-12);
+  EXPECT_EQ(derivatives.values(2, 0), 1.0);  // a fixed variable: its own derivative
+  // Against central differences of the root.
+  const double h = 1e-6;
+  std::vector<double> up{1.0, 2.0, 3.0 + h}, down{1.0, 2.0, 3.0 - h};
+  ParametricParabola above(3.0 + h), below(3.0 - h);
+  ASSERT_TRUE(newton.solve(above.nlp, up).converged);
+  ASSERT_TRUE(newton.solve(below.nlp, down).converged);
+  EXPECT_NEAR((up[problem.x] - down[problem.x]) / (2 * h), derivatives.values(0, 0), 1e-8);
+}
+
+TEST(SquareNewton, DerivativesWhereTheJacobianIsSingularAreNotDefined) {
+  // At x = -1/2 the curve's tangent is parallel to the line: 2 x + 1 = 0.
+  ParametricParabola problem(0.75);
+  const std::vector<double> point{-0.5, 0.5, 0.75};
+  fesd::SquareNewton newton;
+  const fesd::SolutionDerivatives derivatives =
+      newton.derivatives(problem.nlp, point, {}, problem.byParameter(), {problem.x});
+  EXPECT_FALSE(derivatives.defined);
+  EXPECT_EQ(derivatives.failure, "singular Jacobian");
+}
+
+}  // namespace

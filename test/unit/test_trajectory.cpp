@@ -42,6 +42,21 @@ TEST(UnresolvedSwitches, LowestDistanceAlongThePolynomialIsExactForAParabola) {
   EXPECT_TRUE(fesd::findUnresolvedSwitches({element}).empty());
 }
 
+TEST(ClosestApproach, FindsAMinimumBetweenTheSamplesToRounding) {
+  // x2(tau) = (tau - 0.55)^2 - 1 touches c = x2 + 1 = 0 at tau = 0.55, between the samples
+  // (lowestConstraintBetweenStages sees (0.6 - 0.55)^2 = 2.5e-3 at best).
+  const fesd::ButcherTableau radau = fesd::makeTableau(fesd::CollocationFamily::kRadauIIA, 2);
+  auto x2 = [](double tau) { return (tau - 0.55) * (tau - 0.55) - 1.0; };
+  Eigen::SparseMatrix<double> second(1, 2);
+  second.insert(0, 1) = 1.0;
+  const fesd::AffineFunction constraint(second, Eigen::VectorXd::Ones(1));
+  Eigen::MatrixXd stages(2, 2);
+  stages << 0.0, 0.0, x2(radau.c(0)), x2(radau.c(1));
+  const Eigen::Vector2d start(0.0, x2(0.0));
+  EXPECT_GT(fesd::lowestConstraintBetweenStages(constraint, radau.c, start, stages)(0), 1e-4);
+  EXPECT_NEAR(fesd::closestApproach(constraint, 0, radau.c, start, stages), 0.0, 1e-14);
+}
+
 TEST(DensePath, SamplesEachElementsPolynomialInTimeOrder) {
   // Two Radau-IIA(2) elements of x(tau) = tau^2 (exact for the degree-2 polynomial), each
   // element's tau from 0 to 1 mapped onto [e, e + 1].

@@ -46,6 +46,10 @@ class CollocationDiscretization : public Discretization {
   /// The pair alone takes the other mode (the constraints of a PDS are independent).
   void switchPair(PairModes& modes, int pair, int boundary, bool was_active) const override;
 
+  Eigen::SparseMatrix<double> startAndControlDerivatives() const override;
+  int finalStateIndex() const override { return grid_.end_states.back(); }
+  std::vector<int> stepIndices() const override { return grid_.steps; }
+
   const OcpDefinition& ocp() const { return ocp_; }
   const DiscretizationOptions& options() const { return options_; }
   const ButcherTableau& tableau() const { return tableau_; }
@@ -97,6 +101,8 @@ class CollocationDiscretization : public Discretization {
   int addEqualStepsRow(int element);
   /// Throws std::invalid_argument unless `solution` has this NLP's size.
   void requireOwnSize(const std::vector<double>& solution, const char* caller) const;
+  /// startAndControlDerivatives' entries for the data a model derives from the start state.
+  virtual void addStartDataDerivatives(std::vector<Eigen::Triplet<double>>& entries) const {}
   /// The number of complementarity pairs per stage point (constraints, or modes).
   virtual int numPairs() const = 0;
   /// Fills each element's pair matrices (and whatever else the model reads) from x.

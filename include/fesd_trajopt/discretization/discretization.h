@@ -4,6 +4,7 @@
 #include <vector>
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 
 #include "fesd_trajopt/discretization/discretization_options.h"
 #include "fesd_trajopt/discretization/trajectory.h"
@@ -70,6 +71,22 @@ class Discretization {
   /// Switches `pair`, found violating its signs in mode `was_active`, to the other mode from
   /// element `boundary` on, with whatever else that switch implies for the other pairs.
   virtual void switchPair(PairModes& modes, int pair, int boundary, bool was_active) const = 0;
+  /// What the sensitivities of a simulation step (one control interval) differentiate: the
+  /// variables that setInitialState and fixControl(0, u) fix (the start state, the control, and
+  /// what the model derives from the start state, a PDS's c(x0)) by (x0, u), as a sparse
+  /// variables x (n_x + n_u) matrix.
+  virtual Eigen::SparseMatrix<double> startAndControlDerivatives() const = 0;
+  /// The first index of the state at the last element's end.
+  virtual int finalStateIndex() const = 0;
+  /// Each element's length, in order.
+  virtual std::vector<int> stepIndices() const = 0;
+  /// Whether `pair` comes within `tolerance` of its boundary inside `element` of `piece` (a
+  /// solution of this discretisation) without touching it at a stage point: a grazing contact,
+  /// which stage values alone do not show. False where the model has no such geometry.
+  virtual bool grazesBetweenStages(const Trajectory& piece, int element, int pair,
+                                   double tolerance) const {
+    return false;
+  }
   /// Which complementarity pairs are active at a state (the classification of a trajectory's
   /// start for detectSwitches).
   virtual std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const = 0;

@@ -49,6 +49,10 @@ class PdsDiscretization : public CollocationDiscretization {
   /// A simulation step's guess from the step before (smooth motion repeats its increments).
   std::vector<double> translatedGuess(const std::vector<double>& previous_solution) const override;
 
+  /// The element's polynomial's closest approach (closestApproach) within `tolerance`.
+  bool grazesBetweenStages(const Trajectory& piece, int element, int pair,
+                           double tolerance) const override;
+
   /// c_k(x) <= tolerance.
   std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const override;
 
@@ -92,6 +96,8 @@ class PdsDiscretization : public CollocationDiscretization {
   /// Sets the step-equilibration auxiliaries (pi, max, nu, OR) of x consistently with its
   /// s and lambda values, so a guess starts (nearly) feasible for them.
   void completeDependentVariables(std::vector<double>& x) const override;
+  /// c(x_start)'s gradient: the start's lifted values are data derived from x0.
+  void addStartDataDerivatives(std::vector<Eigen::Triplet<double>>& entries) const override;
   int numPairs() const override { return nc_; }
   /// lambda and s = c(x) at the stages, and c's lowest value between them.
   void readPairValues(const double* x, Trajectory& trajectory) const override;

@@ -19,12 +19,18 @@ Eigen::Vector2d initialState();
 double horizon();                      ///< T = pi / 2, so t = 1 is never an element boundary
 double switchTime();                   ///< 1
 Eigen::Vector2d exactState(double t);  ///< t >= 1
+/// d x(t) / d x0 from x0 inside the circle, t after the crossing at -ln|x0|: the flows inside and
+/// outside joined by the saltation matrix I + (f2 - f1) n^T / (n^T f1) (n = grad c).
+Eigen::Matrix2d exactSensitivity(const Eigen::Vector2d& x0, double t);
 }  // namespace spiral_example
 
 /// Nurkanovic et al. 2024, OCP (56): min_{x0} int_0^2 x^2 dt + (x(2) - 5/3)^2, xdot in 2 - sign(x).
 /// Only x0 is free; the reduced objective has its minimum at x0* = -(sqrt(417) - 9) / 8.
 namespace sign_example {
 std::shared_ptr<const StewartModel> model();
+/// x(t) and d x(t) / d x0 of x' = 2 - sign(x) in closed form (t after any crossing).
+double exactState(double x0, double t);
+double exactSensitivity(double x0);
 double optimalInitialState();
 /// The OCP with a free start in [-3, 3], x0_guess as its guess.
 OcpDefinition ocp(double x0_guess);

@@ -29,6 +29,7 @@ struct ActiveSetStep {
   ActiveSetOutcome outcome = ActiveSetOutcome::kFailed;
   MpccReport report;  ///< when solved: status success, polished, the solution
   Trajectory piece;   ///< when solved: the solution read with the options' times and tolerances
+  PairModes modes;    ///< when solved: the modes its solution takes
   int newton_iterations = 0;
   int mode_sequences = 0;  ///< mode sequences tried
   std::string failure;     ///< why the last one was rejected

@@ -79,6 +79,25 @@ struct SimulationOptions {
   /// method, locating switches from violated signs (solveByActiveSets); the homotopy only where
   /// that finds no exact FESD solution. false: the homotopy for every part, for comparison.
   bool active_set_steps = true;
+  /// Also the derivatives of the states at the step ends and of the switch times by the start
+  /// state and the controls (SimulationResult::sensitivities): exact, by the implicit function
+  /// theorem on each part's FESD system at its solution.
+  bool sensitivities = false;
+};
+
+/// The derivatives of a simulation (SimulationOptions::sensitivities) by its start state x0 and
+/// the controls u_0 .. u_{N-1} of its N steps (u_j acts on step j alone; a control held over all
+/// steps has the sum of their blocks). Across a switch they are those of the exact flow
+/// (Nurkanovic et al. 2024, Sec. 4.5): the switch times are unknowns of each step's system.
+struct SimulationSensitivities {
+  /// Per step end k: d x(t_k) / d (x0, u_0, .., u_{N-1}), n_x x (n_x + N n_u); NaN from the
+  /// first step whose derivatives are not defined on.
+  std::vector<Eigen::MatrixXd> states;
+  /// Per switch of the trajectory, in order: d t / d (x0, u_0, .., u_{N-1}); NaN where not
+  /// defined (a switch inside an element, or after the first undefined step).
+  std::vector<Eigen::RowVectorXd> switch_times;
+  int defined_steps = 0;      ///< states[0 .. defined_steps) are defined
+  std::string why_undefined;  ///< for the steps from defined_steps on
 };
 
 struct SimulationResult {
@@ -97,7 +116,8 @@ struct SimulationResult {
   /// How the parts kept in the trajectory were solved: their predicted active set held, their
   /// switches were located by Newton solves, or by the homotopy.
   int predicted_parts = 0, located_parts = 0, homotopy_parts = 0;
-  int newton_iterations = 0;  ///< over all active-set attempts, kept or not
+  int newton_iterations = 0;              ///< over all active-set attempts, kept or not
+  SimulationSensitivities sensitivities;  ///< SimulationOptions::sensitivities
 };
 
 /// Simulates a nonsmooth system (any DynamicsModel) with FESD: num_steps steps of length horizon /

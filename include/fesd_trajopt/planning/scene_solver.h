@@ -49,6 +49,8 @@ struct SceneOutcome {
   /// before, so `start` alone does not tell).
   bool warm_started = false;
   std::vector<AccuracyRung> refinements;  ///< solveToAccuracy's rungs, in order
+  /// A simulation's sensitivities (SimulationOptions::sensitivities), by the full scene's state.
+  SimulationSensitivities sensitivities;
   /// Solves with a growing set of modelled pairs (SceneSolveOptions::lazy_pairs): 1 when the
   /// first set held; 0 for simulations.
   int pair_rounds = 0;

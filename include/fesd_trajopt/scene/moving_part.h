@@ -4,6 +4,7 @@
 
 #include "fesd_trajopt/discretization/trajectory.h"
 #include "fesd_trajopt/discretization/trajectory_guess.h"
+#include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/scene/scene_task.h"
 
 namespace fesd {
@@ -26,6 +27,11 @@ MovingPart movingPart(const SceneTask& task, const std::vector<PairDecision>& de
 /// positions in every state and stage state; controls, multipliers and switches are unchanged.
 Trajectory fullSceneTrajectory(const SceneTask& full, const MovingPart& part,
                                const Trajectory& trajectory);
+
+/// The sensitivities of a simulation of the moving part as those of the full scene: a frozen body
+/// stays where it starts, whatever the others do (its own start: identity; the rest: zero).
+SimulationSensitivities fullSceneSensitivities(const SceneTask& full, const MovingPart& part,
+                                               const SimulationSensitivities& sensitivities);
 
 /// The moving part's view of a guess for the full task whose multipliers belong to `pairs`
 /// (full task indices): the part's states, and each modelled pair's multiplier (0 for a pair

@@ -24,6 +24,9 @@ class RepeatedSparseLu {
   bool factorize(const Eigen::SparseMatrix<double>& a);
   /// x (size cols) solving the pivot rows of A x = b (b of size rows; it is overwritten).
   void solve(std::vector<double>& b, std::vector<double>& x) const;
+  /// The same for `count` right-hand sides at once, row-major: b is rows x count (overwritten),
+  /// x cols x count.
+  void solve(std::vector<double>& b, std::vector<double>& x, int count) const;
 
   /// Whether the last factorize() reused the pivots and structure of the one before.
   bool reusedStructure() const { return reused_; }
@@ -59,7 +62,8 @@ class RepeatedSparseLu {
   std::vector<double> l_values_;
   std::vector<int> u_start_, u_steps_;  ///< U(:, k) above the diagonal: positions j < k
   std::vector<double> u_values_, u_diagonal_;
-  std::vector<double> work_;  ///< per row, zero between uses
+  std::vector<double> work_;               ///< per row, zero between uses
+  mutable std::vector<double> work_rows_;  ///< the multiple right-hand sides' solve
   /// The depth-first search's stack (rows, and where each continues in its column of L), its
   /// output (filled from the end) and marks, per row.
   std::vector<int> dfs_rows_, dfs_next_, dfs_output_;

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
 #include "fesd_trajopt/nlp/nlp_problem.h"
@@ -24,6 +25,15 @@ struct NewtonResult {
   double residual = 0.0;   ///< largest equality-row violation at the last point
   int added_ties = 0;      ///< ties (VariableTie) that made the system determined
   std::string failure;     ///< why not converged
+};
+
+/// The derivatives of a solution of the system with respect to parameters of its fixed variables
+/// (SquareNewton::derivatives).
+struct SolutionDerivatives {
+  bool defined = false;
+  Eigen::MatrixXd values;  ///< per wanted variable (row), per parameter (column)
+  double residual = 0.0;   ///< largest equation residual at the point
+  std::string failure;     ///< why not defined
 };
 
 /// Two variables held equal when the equality rows leave more free variables than equations
@@ -61,7 +71,23 @@ class SquareNewton {
   NewtonResult solve(const NlpProblem& nlp, std::vector<double>& x,
                      const std::vector<VariableTie>& ties = {});
 
+  /// The implicit function theorem at a solution x of the system (the same equations and ties
+  /// as solve()): with the fixed variables depending on parameters p as `fixed_derivatives`
+  /// (variables x parameters, sparse), J_free dx_free/dp = -J_fixed dx_fixed/dp, on the exact
+  /// Jacobian at x, factorised afresh. Returns dx/dp for the `wanted` variables (free or fixed).
+  /// Not defined where the system is not square or its Jacobian is singular; the residual says
+  /// how well x solves it.
+  SolutionDerivatives derivatives(const NlpProblem& nlp, const std::vector<double>& x,
+                                  const std::vector<VariableTie>& ties,
+                                  const Eigen::SparseMatrix<double>& fixed_derivatives,
+                                  const std::vector<int>& wanted);
+
  private:
+  /// With the system read (readSystem: `same_system`), the ties the rows do not impose at x; builds
+  /// the matrix unless it is the last one's; false (with the failure) when it has fewer equations
+  /// than free variables.
+  bool prepareSystem(const NlpProblem& nlp, const std::vector<double>& x,
+                     const std::vector<VariableTie>& ties, bool same_system, NewtonResult& result);
   /// The bounds, free variables and equations of `nlp` now; true when they and the Jacobian's
   /// pattern are those of the last solve (the system's matrix can be reused).
   bool readSystem(const NlpProblem& nlp);
@@ -91,6 +117,7 @@ class SquareNewton {
   Eigen::SparseMatrix<double> matrix_;
   std::vector<int> value_slot_;  ///< per Jacobian entry: its slot in matrix_, or -1
   std::vector<double> residual_, previous_residual_, right_side_, step_, previous_free_values_;
+  std::vector<double> fixed_column_;  ///< derivatives(): one parameter's column, per variable
   RepeatedSparseLu lu_;
 };
 
