@@ -120,7 +120,6 @@ Eigen::SparseMatrix<double> CollocationDiscretization::startAndControlDerivative
   std::vector<Eigen::Triplet<double>> entries;
   for (int d = 0; d < nx_; ++d) entries.emplace_back(start_state_ + d, d, 1.0);
   for (int d = 0; d < nu_; ++d) entries.emplace_back(grid_.controls.front() + d, nx_ + d, 1.0);
-  addStartDataDerivatives(entries);
   Eigen::SparseMatrix<double> derivatives(nlp_.numVariables(), nx_ + nu_);
   derivatives.setFromTriplets(entries.begin(), entries.end());
   return derivatives;

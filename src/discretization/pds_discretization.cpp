@@ -274,17 +274,6 @@ void PdsDiscretization::setInitialState(const Eigen::VectorXd& x0) {
   }
 }
 
-void PdsDiscretization::addStartDataDerivatives(
-    std::vector<Eigen::Triplet<double>>& entries) const {
-  const SmoothFunction& constraints = *model_->constraints();
-  const SparsityPattern& pattern = constraints.jacobianPattern();
-  std::vector<double> values(pattern.nonzeros());
-  constraints.evaluateJacobian(ocp_.initial_state.data(), values.data());
-  for (int e = 0; e < pattern.nonzeros(); ++e) {
-    entries.emplace_back(start_.s + pattern.rows[e], pattern.cols[e], values[e]);
-  }
-}
-
 void PdsDiscretization::setInitialMultipliers(const Eigen::VectorXd& lambda0) {
   if (lambda0.size() != nc_) throw std::invalid_argument("initial multipliers have the wrong size");
   for (int k = 0; k < nc_; ++k) {
@@ -424,6 +413,13 @@ void PdsDiscretization::readPairValues(const double* x, Trajectory& trajectory) 
   }
 }
 
+namespace {
+
+/// Closer than this fraction of an element to its start or end, a touch is the boundary's.
+constexpr double kEndFraction = 1e-6;
+
+}  // namespace
+
 bool PdsDiscretization::grazesBetweenStages(const Trajectory& piece, int element, int pair,
                                             double tolerance) const {
   const ElementValues& values = piece.elements[element];
@@ -436,8 +432,11 @@ bool PdsDiscretization::grazesBetweenStages(const Trajectory& piece, int element
       values.lowest_constraints(pair) > moved * moved + tolerance) {
     return false;
   }
-  return closestApproach(*model_->constraints(), pair, tableau_.c, piece.states[element],
-                         values.stage_states) <= tolerance;
+  // A touch at the element's ends is a boundary point's, which the stage checks see.
+  const ClosestApproach closest = closestApproach(*model_->constraints(), pair, tableau_.c,
+                                                  piece.states[element], values.stage_states);
+  return closest.distance <= tolerance && closest.fraction > kEndFraction &&
+         closest.fraction < 1.0 - kEndFraction;
 }
 
 std::vector<bool> PdsDiscretization::activeAtStart(const double* x, const Trajectory&,

@@ -118,9 +118,9 @@ Eigen::VectorXd lowestConstraintBetweenStages(const SmoothFunction& constraints,
   return lowest;
 }
 
-double closestApproach(const SmoothFunction& constraints, int constraint,
-                       const Eigen::VectorXd& nodes, const Eigen::VectorXd& start_state,
-                       const Eigen::MatrixXd& stage_states, int samples_per_gap) {
+ClosestApproach closestApproach(const SmoothFunction& constraints, int constraint,
+                                const Eigen::VectorXd& nodes, const Eigen::VectorXd& start_state,
+                                const Eigen::MatrixXd& stage_states, int samples_per_gap) {
   const SparsityPattern& pattern = constraints.jacobianPattern();
   Eigen::VectorXd c(constraints.outputSize());
   std::vector<double> jacobian(pattern.nonzeros());
@@ -163,7 +163,10 @@ double closestApproach(const SmoothFunction& constraints, int constraint,
       f2 = distance(x2);
     }
   }
-  return std::min({lowest_value, f1, f2});
+  if (lowest_value <= std::min(f1, f2)) {
+    return {lowest_value, static_cast<double>(lowest) / samples};
+  }
+  return f1 < f2 ? ClosestApproach{f1, x1} : ClosestApproach{f2, x2};
 }
 
 std::vector<UnresolvedSwitch> findUnresolvedSwitches(const std::vector<ElementValues>& elements,

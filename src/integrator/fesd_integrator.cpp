@@ -180,34 +180,28 @@ class FesdIntegrator::Run {
 
   /// The sensitivities of an accepted part, chained to the run's.
   void addSensitivity(const Attempt& attempt) {
-    const bool fesd = attempt.discretization->stepsAreFree();
-    if (fesd && !result.trajectory.elements.empty()) {
-      const std::string at_end = switchAtEnd(result.trajectory, options_.activity_tolerance);
-      if (!at_end.empty()) {
-        sensitivities_.stopDefining("step " + std::to_string(step_) + ": " + at_end);
-      }
-    }
     StepSensitivity part;
-    if (sensitivities_.defined()) part = partSensitivity(attempt, fesd);
+    if (sensitivities_.defined()) part = partSensitivity(attempt);
     sensitivities_.addPart(part, step_, static_cast<int>(attempt.piece.elements.size()));
   }
 
   /// The sensitivities of a part by its own start state and control. Time-stepping (switch
   /// detection off) places switches at stage points, so only FESD's parts are checked for pairs
-  /// that touch without switching.
-  StepSensitivity partSensitivity(const Attempt& attempt, bool fesd) {
+  /// that touch without switching and for switches at their end.
+  StepSensitivity partSensitivity(const Attempt& attempt) {
     StepSensitivity part;
+    const double tolerance = options_.activity_tolerance;
     if (!attempt.report.converged()) {
       part.why_undefined = "its solve did not converge";
     } else if (attempt.fixed_steps) {
       part.why_undefined = "integrated with fixed steps where FESD found no solution";
-    } else if (fesd) {
-      const std::vector<bool> active_before =
-          result.trajectory.elements.empty()
-              ? std::vector<bool>{}
-              : activeAtEnd(result.trajectory, options_.activity_tolerance);
+    } else if (attempt.discretization->stepsAreFree()) {
+      const std::vector<bool> active_before = result.trajectory.elements.empty()
+                                                  ? std::vector<bool>{}
+                                                  : activeAtEnd(result.trajectory, tolerance);
       part.why_undefined = degeneracy(*attempt.discretization, attempt.piece, attempt.modes,
-                                      active_before, options_.activity_tolerance);
+                                      active_before, tolerance);
+      if (part.why_undefined.empty()) part.why_undefined = switchAtEnd(attempt.piece, tolerance);
     }
     if (!part.why_undefined.empty()) return part;
     return stepSensitivity(*attempt.discretization, attempt.report.solution, attempt.modes,

@@ -54,11 +54,9 @@ SimulationSensitivities SensitivityChain::finish(const std::vector<SwitchEvent>&
   result.states = states_;
   result.defined_steps = defined_steps_;
   result.why_undefined = why_undefined_;
+  // Every switch sits on an element boundary (one inside an element is an unresolved switch).
   for (const SwitchEvent& event : switches) {
-    const bool known =
-        event.element >= 0 && event.element < static_cast<int>(boundary_times_.size());
-    result.switch_times.push_back(known ? boundary_times_[event.element]
-                                        : Eigen::RowVectorXd::Constant(chain_.cols(), kNaN));
+    result.switch_times.push_back(boundary_times_.at(event.element));
   }
   return result;
 }

@@ -29,6 +29,23 @@ std::string degeneracy(const Discretization& discretization, const Trajectory& p
                        const PairModes& modes, const std::vector<bool>& active_before,
                        double tolerance) {
   const int elements = static_cast<int>(piece.elements.size());
+  for (int e = 1; e < elements; ++e) {
+    // Two independent switches at one boundary part under perturbation, each way one of them
+    // first. (At a step's start a control jump pins them: they do not count there.)
+    int first_group = -1, first_pair = -1;
+    for (int k = 0; k < static_cast<int>(modes[e].size()); ++k) {
+      if (modes[e][k] == modes[e - 1][k]) continue;
+      const int group = discretization.switchingGroup(k);
+      if (first_group < 0) {
+        first_group = group;
+        first_pair = k;
+      } else if (group != first_group) {
+        return "pairs " + std::to_string(first_pair) + " and " + std::to_string(k) +
+               " switch together at t = " + std::to_string(piece.times[e]) +
+               " (coinciding switches separate under perturbation)";
+      }
+    }
+  }
   for (int e = 0; e < elements; ++e) {
     const ElementValues& element = piece.elements[e];
     const int stages = static_cast<int>(element.stage_multipliers.cols());
@@ -38,10 +55,13 @@ std::string degeneracy(const Discretization& discretization, const Trajectory& p
           e > 0 ? modes[e - 1][k] != active
                 : k < static_cast<int>(active_before.size()) && active_before[k] != active;
       const bool switch_after = e + 1 < elements && modes[e + 1][k] != active;
+      // Beside a switch of the pair its free side starts or ends at zero (a release under an
+      // unchanged control lets lambda fall and c rise continuously): the switch is the event
+      // the equations place, so only elements away from one are checked.
+      if (switch_before || switch_after) continue;
       const std::string pair = "pair " + std::to_string(k);
       for (int j = 0; j < stages; ++j) {
-        // The last stage is the element's end: where a switch puts both sides at zero.
-        if (j + 1 == stages && switch_after) continue;
+        if (e + 1 == elements && j + 1 == stages) continue;  // the step's end: switchAtEnd
         const double free_side =
             active ? element.stage_multipliers(k, j) : element.stage_constraints(k, j);
         if (free_side > tolerance) continue;
@@ -49,8 +69,7 @@ std::string degeneracy(const Discretization& discretization, const Trajectory& p
         return pair + (active ? "'s force vanishes" : " touches") +
                " at t = " + std::to_string(time) + " without switching there";
       }
-      if (!active && !switch_before && !switch_after &&
-          discretization.grazesBetweenStages(piece, e, k, tolerance)) {
+      if (!active && discretization.grazesBetweenStages(piece, e, k, tolerance)) {
         return pair +
                " touches between the stage points after t = " + std::to_string(element.start_time) +
                " without switching there";
@@ -70,14 +89,14 @@ std::vector<bool> activeAtEnd(const Trajectory& trajectory, double tolerance) {
   return active;
 }
 
-std::string switchAtEnd(const Trajectory& trajectory, double tolerance) {
-  const ElementValues& last = trajectory.elements.back();
+std::string switchAtEnd(const Trajectory& piece, double tolerance) {
+  const ElementValues& last = piece.elements.back();
   const int stage = static_cast<int>(last.stage_multipliers.cols()) - 1;
   for (int k = 0; k < static_cast<int>(last.stage_multipliers.rows()); ++k) {
     if (last.stage_multipliers(k, stage) <= tolerance &&
         last.stage_constraints(k, stage) <= tolerance) {
       return "pair " + std::to_string(k) +
-             " switches at the end of a step (t = " + std::to_string(trajectory.times.back()) +
+             " switches at the end of a step (t = " + std::to_string(piece.times.back()) +
              "), where no element boundary is free to follow it";
     }
   }
@@ -97,7 +116,9 @@ StepSensitivity stepSensitivity(Discretization& discretization, const std::vecto
   if ((zero_sides.empty() && nlp.numComplementarities() > 0) ||
       !nlp.fixGivenActiveSet(zero_sides, solution.data())) {
     nlp.setRelaxation(relaxation);
-    sensitivity.why_undefined = "its modes fix no active set at its solution";
+    sensitivity.why_undefined =
+        "its modes fix no active set at its solution (the big-M step equilibration's pairs have "
+        "no modes)";
     return sensitivity;
   }
   std::vector<int> wanted;

@@ -1,24 +1,22 @@
 #include "sensitivity_message.h"
 
-#include <cmath>
+#include <cstdint>
 
 namespace fesd_ros {
 namespace {
 
-/// A row-major array with its dims (label, size) and strides.
+/// A row-major array with its dims (label, size) and strides (each the product of its own and
+/// the later sizes, as std_msgs/MultiArrayLayout defines them).
 std_msgs::Float64MultiArray multiArray(const std::vector<std::pair<std::string, int>>& dims) {
   std_msgs::Float64MultiArray array;
-  size_t stride = 1;
-  for (const auto& dim : dims) stride *= static_cast<size_t>(dim.second);
-  for (const auto& [label, size] : dims) {
-    std_msgs::MultiArrayDimension dimension;
-    dimension.label = label;
-    dimension.size = static_cast<uint32_t>(size);
-    dimension.stride = static_cast<uint32_t>(stride);
-    stride /= std::max(size, 1);
-    array.layout.dim.push_back(dimension);
+  array.layout.dim.resize(dims.size());
+  uint32_t stride = 1;
+  for (size_t i = dims.size(); i-- > 0;) {
+    stride *= static_cast<uint32_t>(dims[i].second);
+    array.layout.dim[i].label = dims[i].first;
+    array.layout.dim[i].size = static_cast<uint32_t>(dims[i].second);
+    array.layout.dim[i].stride = stride;
   }
-  array.data.reserve(array.layout.dim.empty() ? 0 : array.layout.dim.front().stride);
   return array;
 }
 
@@ -84,9 +82,6 @@ fesd_trajopt::Sensitivities sensitivityMessage(const fesd::SimulationSensitiviti
   message.defined_steps = static_cast<uint32_t>(sensitivities.defined_steps);
   message.all_defined = sensitivities.defined_steps == steps && switches_defined;
   message.undefined_reason = sensitivities.why_undefined;
-  if (message.undefined_reason.empty() && !switches_defined) {
-    message.undefined_reason = "a switch inside an element (unresolved) has no defined time";
-  }
   return message;
 }
 

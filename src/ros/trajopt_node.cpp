@@ -6,8 +6,7 @@
 #include <exception>
 #include <optional>
 
-#include "fesd_trajopt/examples/circle_example.h"
-#include "fesd_trajopt/examples/filippov_examples.h"
+#include "builtin_systems.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/planning/scene_solver.h"
 #include "fesd_trajopt/solver/heap_policy.h"
@@ -192,40 +191,6 @@ std::string jointCommands(const trajectory_msgs::JointTrajectory& commands,
     }
   }
   return "";
-}
-
-/// A system ~simulate knows by name: its model, start, horizon and names.
-struct BuiltinSystem {
-  std::shared_ptr<const fesd::DynamicsModel> model;
-  Eigen::VectorXd initial_state;
-  double horizon;
-  std::vector<std::string> state_names;
-  std::vector<std::string> constraint_names;  ///< the switches' second side, per constraint
-};
-
-std::optional<BuiltinSystem> builtinSystem(const std::string& name) {
-  if (name == "circle_example") {
-    return BuiltinSystem{fesd::circle_example::model(),
-                         fesd::circle_example::initialState(),
-                         fesd::circle_example::horizon(),
-                         {"x1", "x2"},
-                         {"x2 >= -1"}};
-  }
-  if (name == "two_minus_sign") {
-    return BuiltinSystem{fesd::sign_example::model(),
-                         Eigen::VectorXd::Constant(1, -1.0),
-                         2.0,
-                         {"x"},
-                         {"x > 0", "x < 0"}};
-  }
-  if (name == "spiral") {
-    return BuiltinSystem{fesd::spiral_example::model(),
-                         fesd::spiral_example::initialState(),
-                         fesd::spiral_example::horizon(),
-                         {"x1", "x2"},
-                         {"|x| > 1", "|x| < 1"}};
-  }
-  return std::nullopt;
 }
 
 /// Why the sensitivities a request asks for are too many numbers to answer, or "".

@@ -246,6 +246,10 @@ SolutionDerivatives SquareNewton::derivatives(const NlpProblem& nlp, const std::
   }
   const int rows = static_cast<int>(equations_.size() + added_ties_.size());
   result.residual = evaluateResidual(nlp, x);
+  for (size_t v = 0; v < x.size(); ++v) {
+    if (column_of_[v] < 0)
+      result.residual = std::max(result.residual, std::fabs(x[v] - x_lower_[v]));
+  }
   if (!factorizeJacobian(nlp, x)) {
     result.failure = "singular Jacobian";
     return result;

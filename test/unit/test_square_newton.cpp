@@ -150,16 +150,14 @@ TEST(SquareNewton, ANewSolveOfTheSameSystemStartsWithTheLastFactorisation) {
   EXPECT_NEAR(other[0], -2.0, 1e-12);
 }
 
-}  // namespace
-
-namespace {
-
 /// x^2 + y = p and x - y = -1 with the parameter p a fixed variable: at a root,
 /// dx/dp = dy/dp = 1 / (2 x + 1).
 struct ParametricParabola {
   fesd::NlpAssembly nlp;
   int x, y, p;
-  explicit ParametricParabola(double parameter) {
+  /// extra_row: none, or 2 x - 2 y = -2 (the line again: one equation too many).
+  enum ExtraRow { kNone, kSameLine };
+  explicit ParametricParabola(double parameter, ExtraRow extra_row = kNone) {
     x = nlp.addVariables(1, -kInf, kInf);
     y = nlp.addVariables(1, -kInf, kInf);
     p = nlp.addVariables(1, parameter, parameter);
@@ -168,6 +166,7 @@ struct ParametricParabola {
     nlp.addFunctionTerm(fesd::makeAutoDiffFunction(1, 1, Square{}), {x}, -1, {{curve, 1.0}});
     const int line = nlp.addRows(1, -1.0, -1.0);
     nlp.addLinear(line, {{x, 1.0}, {y, -1.0}});
+    if (extra_row == kSameLine) nlp.addLinear(nlp.addRows(1, -2.0, -2.0), {{x, 2.0}, {y, -2.0}});
     nlp.finalize();
   }
   Eigen::SparseMatrix<double> byParameter() const {
@@ -197,6 +196,17 @@ TEST(SquareNewton, DerivativesAtARootAreThoseOfTheImplicitFunction) {
   ASSERT_TRUE(newton.solve(above.nlp, up).converged);
   ASSERT_TRUE(newton.solve(below.nlp, down).converged);
   EXPECT_NEAR((up[problem.x] - down[problem.x]) / (2 * h), derivatives.values(0, 0), 1e-8);
+}
+
+TEST(SquareNewton, DerivativesOfMoreEquationsThanUnknownsComeFromThePivotRows) {
+  ParametricParabola problem(3.0, ParametricParabola::kSameLine);
+  std::vector<double> point{0.5, 0.5, 3.0};
+  fesd::SquareNewton newton;
+  ASSERT_TRUE(newton.solve(problem.nlp, point).converged);
+  const fesd::SolutionDerivatives derivatives =
+      newton.derivatives(problem.nlp, point, {}, problem.byParameter(), {problem.x});
+  ASSERT_TRUE(derivatives.defined) << derivatives.failure;
+  EXPECT_NEAR(derivatives.values(0, 0), 1.0 / 3.0, 1e-12);
 }
 
 TEST(SquareNewton, DerivativesWhereTheJacobianIsSingularAreNotDefined) {

@@ -36,14 +36,11 @@ std::shared_ptr<const fesd::StewartModel> slidingModel() {
   return fesd::makeSwitchingModel(2, 1, {1}, SlidingModes{}, FirstState{}, "sliding");
 }
 
-fesd::SimulationResult simulateWithSensitivities(std::shared_ptr<const fesd::DynamicsModel> model,
-                                                 const Eigen::VectorXd& x0, double horizon,
-                                                 int steps,
-                                                 const std::vector<Eigen::VectorXd>& controls = {},
-                                                 bool switch_detection = true) {
+fesd::SimulationResult simulateWithSensitivities(
+    std::shared_ptr<const fesd::DynamicsModel> model, const Eigen::VectorXd& x0, double horizon,
+    int steps, const std::vector<Eigen::VectorXd>& controls = {}) {
   fesd::SimulationOptions options;
   options.sensitivities = true;
-  options.discretization.switch_detection = switch_detection;
   return fesd::FesdIntegrator(std::move(model), options).simulate(x0, horizon, steps, controls);
 }
 
@@ -212,6 +209,33 @@ TEST(StepSensitivity, AGrazingContactIsNotDifferentiable) {
   EXPECT_NE(s.why_undefined.find("touches"), std::string::npos) << s.why_undefined;
   EXPECT_TRUE(s.states[1].allFinite());
   EXPECT_TRUE(s.states[2].array().isNaN().all());
+}
+
+TEST(StepSensitivity, AContactRightAtAStepsEndIsNotDifferentiable) {
+  // From -2 the pusher touches the puck at t = 1, the end of step 1 (steps of 0.5 s): a start a
+  // little farther back moves the contact into step 2, a little nearer into step 1.
+  const PushAndRelease push(0.0, 2.0);
+  const fesd::SimulationResult result = push.simulate(push.scene.initialState(), push.controls);
+  ASSERT_EQ(result.status, fesd::SolveStatus::kSuccess) << result.message;
+  EXPECT_EQ(result.sensitivities.defined_steps, 1);
+  EXPECT_NE(result.sensitivities.why_undefined.find("end of a step"), std::string::npos)
+      << result.sensitivities.why_undefined;
+}
+
+TEST(StepSensitivity, TwoContactsAtOneInstantAreNotDifferentiable) {
+  // Two pushers at (-3, 0) and (3, 0) meet a disc at the origin at t = 1 by symmetry; a shift of
+  // either start lets one of them touch first.
+  fesd::Scene scene{2};
+  scene.bodies().push_back({"left", 1.0, Eigen::Vector2d(-3.0, 0.0), true});
+  scene.bodies().push_back({"right", 1.0, Eigen::Vector2d(3.0, 0.0), true});
+  scene.bodies().push_back({"object", 1.0, Eigen::Vector2d(0.0, 0.0), false});
+  const fesd::SimulationResult result =
+      simulateWithSensitivities(scene.model(scene.allPairs()), scene.initialState(), 2.0, 5,
+                                {Eigen::Vector4d(1.0, 0.0, -1.0, 0.0)});
+  ASSERT_EQ(result.status, fesd::SolveStatus::kSuccess) << result.message;
+  EXPECT_EQ(result.sensitivities.defined_steps, 2);
+  EXPECT_NE(result.sensitivities.why_undefined.find("switch together"), std::string::npos)
+      << result.sensitivities.why_undefined;
 }
 
 TEST(StepSensitivity, AStepOutOfTimeLeavesItsDerivativesUndefined) {

@@ -54,7 +54,10 @@ TEST(ClosestApproach, FindsAMinimumBetweenTheSamplesToRounding) {
   stages << 0.0, 0.0, x2(radau.c(0)), x2(radau.c(1));
   const Eigen::Vector2d start(0.0, x2(0.0));
   EXPECT_GT(fesd::lowestConstraintBetweenStages(constraint, radau.c, start, stages)(0), 1e-4);
-  EXPECT_NEAR(fesd::closestApproach(constraint, 0, radau.c, start, stages), 0.0, 1e-14);
+  const fesd::ClosestApproach closest =
+      fesd::closestApproach(constraint, 0, radau.c, start, stages);
+  EXPECT_NEAR(closest.distance, 0.0, 1e-14);
+  EXPECT_NEAR(closest.fraction, 0.55, 1e-6);
 }
 
 TEST(DensePath, SamplesEachElementsPolynomialInTimeOrder) {

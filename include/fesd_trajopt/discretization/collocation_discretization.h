@@ -101,8 +101,6 @@ class CollocationDiscretization : public Discretization {
   int addEqualStepsRow(int element);
   /// Throws std::invalid_argument unless `solution` has this NLP's size.
   void requireOwnSize(const std::vector<double>& solution, const char* caller) const;
-  /// startAndControlDerivatives' entries for the data a model derives from the start state.
-  virtual void addStartDataDerivatives(std::vector<Eigen::Triplet<double>>& entries) const {}
   /// The number of complementarity pairs per stage point (constraints, or modes).
   virtual int numPairs() const = 0;
   /// Fills each element's pair matrices (and whatever else the model reads) from x.

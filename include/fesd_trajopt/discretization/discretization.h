@@ -72,9 +72,9 @@ class Discretization {
   /// element `boundary` on, with whatever else that switch implies for the other pairs.
   virtual void switchPair(PairModes& modes, int pair, int boundary, bool was_active) const = 0;
   /// What the sensitivities of a simulation step (one control interval) differentiate: the
-  /// variables that setInitialState and fixControl(0, u) fix (the start state, the control, and
-  /// what the model derives from the start state, a PDS's c(x0)) by (x0, u), as a sparse
-  /// variables x (n_x + n_u) matrix.
+  /// variables that setInitialState and fixControl(0, u) fix (the start state, the control) by
+  /// (x0, u), as a sparse variables x (n_x + n_u) matrix. Data the model derives from them (a
+  /// PDS's c(x0)) enter no equation of a step's active-set system, only its decisions.
   virtual Eigen::SparseMatrix<double> startAndControlDerivatives() const = 0;
   /// The first index of the state at the last element's end.
   virtual int finalStateIndex() const = 0;
@@ -87,6 +87,9 @@ class Discretization {
                                    double tolerance) const {
     return false;
   }
+  /// Pairs of one group switch together as one event (a Filippov subsystem's modes: one leaves
+  /// as another enters); pairs of different groups are independent constraints.
+  virtual int switchingGroup(int pair) const { return pair; }
   /// Which complementarity pairs are active at a state (the classification of a trajectory's
   /// start for detectSwitches).
   virtual std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const = 0;

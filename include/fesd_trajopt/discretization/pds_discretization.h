@@ -96,8 +96,6 @@ class PdsDiscretization : public CollocationDiscretization {
   /// Sets the step-equilibration auxiliaries (pi, max, nu, OR) of x consistently with its
   /// s and lambda values, so a guess starts (nearly) feasible for them.
   void completeDependentVariables(std::vector<double>& x) const override;
-  /// c(x_start)'s gradient: the start's lifted values are data derived from x0.
-  void addStartDataDerivatives(std::vector<Eigen::Triplet<double>>& entries) const override;
   int numPairs() const override { return nc_; }
   /// lambda and s = c(x) at the stages, and c's lowest value between them.
   void readPairValues(const double* x, Trajectory& trajectory) const override;

@@ -74,6 +74,8 @@ class StewartDiscretization : public CollocationDiscretization {
 
   /// A mode that becomes active crosses over: the modes active in its subsystem at the boundary
   /// leave (a crossing, not sliding, which the homotopy finds if this fails).
+  /// The mode's subsystem.
+  int switchingGroup(int pair) const override { return model_->subsystemOf(pair); }
   void switchPair(PairModes& modes, int pair, int boundary, bool was_active) const override;
   /// Modes whose indicator is within tolerance of its subsystem's minimum.
   std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const override;

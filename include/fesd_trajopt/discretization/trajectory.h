@@ -91,12 +91,17 @@ Eigen::VectorXd lowestConstraintBetweenStages(const SmoothFunction& constraints,
                                               int samples_per_gap = 4);
 
 /// The smallest signed distance of constraint `constraint` along an element's collocation
-/// polynomial, as lowestConstraintBetweenStages samples it, then located to rounding by a
-/// golden-section search between the neighbours of its lowest sample: whether a polynomial
-/// only touches a boundary (a grazing contact) is a question of a few ulps.
-double closestApproach(const SmoothFunction& constraints, int constraint,
-                       const Eigen::VectorXd& nodes, const Eigen::VectorXd& start_state,
-                       const Eigen::MatrixXd& stage_states, int samples_per_gap = 4);
+/// polynomial and where it is (the fraction of the element), as lowestConstraintBetweenStages
+/// samples it, then located to rounding by a golden-section search between the neighbours of
+/// its lowest sample: whether a polynomial only touches a boundary (a grazing contact) is a
+/// question of a few ulps.
+struct ClosestApproach {
+  double distance;
+  double fraction;
+};
+ClosestApproach closestApproach(const SmoothFunction& constraints, int constraint,
+                                const Eigen::VectorXd& nodes, const Eigen::VectorXd& start_state,
+                                const Eigen::MatrixXd& stage_states, int samples_per_gap = 4);
 
 /// The state of an element's collocation polynomial, the polynomial of degree n_s through the
 /// start state at 0 and the stage states at `nodes`, at the fraction `t` of the element.

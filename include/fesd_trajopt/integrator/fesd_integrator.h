@@ -87,14 +87,16 @@ struct SimulationOptions {
 
 /// The derivatives of a simulation (SimulationOptions::sensitivities) by its start state x0 and
 /// the controls u_0 .. u_{N-1} of its N steps (u_j acts on step j alone; a control held over all
-/// steps has the sum of their blocks). Across a switch they are those of the exact flow
-/// (Nurkanovic et al. 2024, Sec. 4.5): the switch times are unknowns of each step's system.
+/// steps has the sum of their blocks). With switch detection (FESD) they converge to those of
+/// the exact flow across switches (Nurkanovic et al. 2024, Sec. 4.5): the switch times are
+/// unknowns of each step's system. Without it (time-stepping) they are the derivatives of the
+/// discrete map, which do not converge across switches: for comparison only.
 struct SimulationSensitivities {
   /// Per step end k: d x(t_k) / d (x0, u_0, .., u_{N-1}), n_x x (n_x + N n_u); NaN from the
   /// first step whose derivatives are not defined on.
   std::vector<Eigen::MatrixXd> states;
-  /// Per switch of the trajectory, in order: d t / d (x0, u_0, .., u_{N-1}); NaN where not
-  /// defined (a switch inside an element, or after the first undefined step).
+  /// Per switch of the trajectory, in order: d t / d (x0, u_0, .., u_{N-1}); NaN after the
+  /// first undefined part.
   std::vector<Eigen::RowVectorXd> switch_times;
   int defined_steps = 0;      ///< states[0 .. defined_steps) are defined
   std::string why_undefined;  ///< for the steps from defined_steps on

@@ -29,11 +29,12 @@ PairModes modesOf(const Trajectory& piece, const std::vector<bool>& active_at_st
                   double tolerance);
 
 /// Why the derivatives of a step with these modes are not defined, or "": a pair whose free side
-/// (c for an inactive pair, also between the stage points (Discretization::grazesBetweenStages);
-/// lambda for an active one). `active_before`: the modes before the step (empty: none), for a
-/// switch at its start (a release where a control jumps). vanishes
-/// to `tolerance` where no switch of its mode puts it (a grazing contact, a force that falls to
-/// zero and rises again). A switch at the step's end is the integrator's to check.
+/// (c for an inactive pair, at the stage points and between them,
+/// Discretization::grazesBetweenStages; lambda for an active one) vanishes to `tolerance` in an
+/// element where the pair does not switch at either end: a grazing contact, or a force that
+/// falls to zero and rises again; or two pairs of different switching groups switching at one
+/// element boundary (Discretization::switchingGroup). `active_before`: the modes before the step
+/// (empty: none), so that a switch at its start (a release where a control jumps) counts as one.
 std::string degeneracy(const Discretization& discretization, const Trajectory& piece,
                        const PairModes& modes, const std::vector<bool>& active_before,
                        double tolerance);
@@ -41,16 +42,16 @@ std::string degeneracy(const Discretization& discretization, const Trajectory& p
 /// The pairs with a force at a trajectory's end (the modes before the next step).
 std::vector<bool> activeAtEnd(const Trajectory& trajectory, double tolerance);
 
-/// Why a trajectory's last point keeps the next step's derivatives from being defined, or "": a
-/// pair with both sides negligible there switches at the step's end, where no element boundary
-/// is free to follow the switch.
-std::string switchAtEnd(const Trajectory& trajectory, double tolerance);
+/// Why a step's end keeps its derivatives from being defined, or "": a pair with both sides
+/// negligible there switches right at the end, where no element boundary is free to follow it
+/// (the one-sided derivatives differ by the saltation).
+std::string switchAtEnd(const Trajectory& piece, double tolerance);
 
 /// The sensitivities of the step `discretization` holds (its start state and control set), at
 /// its `solution` whose pairs take `modes`: the active set fixed at sigma = 0 (FESD: the modes'
 /// zero sides and equal steps where nothing switches; fixed steps: the zero sides the solution
 /// shows), then SquareNewton::derivatives. Not defined where the solution does not solve that
-/// system to `tolerance` or its Jacobian is singular.
+/// system to `tolerance`, or SquareNewton::derivatives does not define them.
 StepSensitivity stepSensitivity(Discretization& discretization, const std::vector<double>& solution,
                                 const PairModes& modes, int state_size, double tolerance,
                                 SquareNewton& newton);

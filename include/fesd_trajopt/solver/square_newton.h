@@ -75,8 +75,9 @@ class SquareNewton {
   /// as solve()): with the fixed variables depending on parameters p as `fixed_derivatives`
   /// (variables x parameters, sparse), J_free dx_free/dp = -J_fixed dx_fixed/dp, on the exact
   /// Jacobian at x, factorised afresh. Returns dx/dp for the `wanted` variables (free or fixed).
-  /// Not defined where the system is not square or its Jacobian is singular; the residual says
-  /// how well x solves it.
+  /// With more equations than unknowns, the LU's pivot rows, as solve(). Not defined where the
+  /// equations are fewer than the free variables or the Jacobian is singular. The residual says
+  /// how well x solves the system and sits on its fixed variables' values.
   SolutionDerivatives derivatives(const NlpProblem& nlp, const std::vector<double>& x,
                                   const std::vector<VariableTie>& ties,
                                   const Eigen::SparseMatrix<double>& fixed_derivatives,
