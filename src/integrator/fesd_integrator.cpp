@@ -201,7 +201,10 @@ class FesdIntegrator::Run {
                                                   : activeAtEnd(result.trajectory, tolerance);
       part.why_undefined = degeneracy(*attempt.discretization, attempt.piece, attempt.modes,
                                       active_before, tolerance);
-      if (part.why_undefined.empty()) part.why_undefined = switchAtEnd(attempt.piece, tolerance);
+      if (part.why_undefined.empty()) {
+        part.why_undefined =
+            switchAtEnd(*attempt.discretization, attempt.piece, attempt.modes, tolerance);
+      }
     }
     if (!part.why_undefined.empty()) return part;
     return stepSensitivity(*attempt.discretization, attempt.report.solution, attempt.modes,

@@ -89,16 +89,19 @@ std::vector<bool> activeAtEnd(const Trajectory& trajectory, double tolerance) {
   return active;
 }
 
-std::string switchAtEnd(const Trajectory& piece, double tolerance) {
+std::string switchAtEnd(const Discretization& discretization, const Trajectory& piece,
+                        const PairModes& modes, double tolerance) {
   const ElementValues& last = piece.elements.back();
   const int stage = static_cast<int>(last.stage_multipliers.cols()) - 1;
   for (int k = 0; k < static_cast<int>(last.stage_multipliers.rows()); ++k) {
-    if (last.stage_multipliers(k, stage) <= tolerance &&
-        last.stage_constraints(k, stage) <= tolerance) {
-      return "pair " + std::to_string(k) +
-             " switches at the end of a step (t = " + std::to_string(piece.times.back()) +
-             "), where no element boundary is free to follow it";
+    if (last.stage_multipliers(k, stage) > tolerance ||
+        last.stage_constraints(k, stage) > tolerance) {
+      continue;
     }
+    if (modes.back()[k] && discretization.releasesAreSmooth()) continue;
+    return "pair " + std::to_string(k) +
+           " switches at the end of a step (t = " + std::to_string(piece.times.back()) +
+           "), where no element boundary is free to follow it";
   }
   return "";
 }

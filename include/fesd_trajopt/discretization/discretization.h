@@ -90,6 +90,9 @@ class Discretization {
   /// Pairs of one group switch together as one event (a Filippov subsystem's modes: one leaves
   /// as another enters); pairs of different groups are independent constraints.
   virtual int switchingGroup(int pair) const { return pair; }
+  /// Whether a release leaves the flow continuously differentiable: no jump of the velocity
+  /// there, so no saltation (a PDS: its force falls continuously to zero).
+  virtual bool releasesAreSmooth() const { return false; }
   /// Which complementarity pairs are active at a state (the classification of a trajectory's
   /// start for detectSwitches).
   virtual std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const = 0;

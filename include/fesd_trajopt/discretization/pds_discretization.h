@@ -53,6 +53,10 @@ class PdsDiscretization : public CollocationDiscretization {
   bool grazesBetweenStages(const Trajectory& piece, int element, int pair,
                            double tolerance) const override;
 
+  /// lambda = max(0, -grad c . f / |grad c|^2) is continuous where f is: it falls to zero at a
+  /// release, and the velocity does not jump.
+  bool releasesAreSmooth() const override { return true; }
+
   /// c_k(x) <= tolerance.
   std::vector<bool> activeAt(const Eigen::VectorXd& x, double tolerance) const override;
 

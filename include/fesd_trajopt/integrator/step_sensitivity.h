@@ -44,8 +44,10 @@ std::vector<bool> activeAtEnd(const Trajectory& trajectory, double tolerance);
 
 /// Why a step's end keeps its derivatives from being defined, or "": a pair with both sides
 /// negligible there switches right at the end, where no element boundary is free to follow it
-/// (the one-sided derivatives differ by the saltation).
-std::string switchAtEnd(const Trajectory& piece, double tolerance);
+/// and the one-sided derivatives differ by the saltation. Not so for a pair in contact before
+/// where releases are smooth (Discretization::releasesAreSmooth): no saltation.
+std::string switchAtEnd(const Discretization& discretization, const Trajectory& piece,
+                        const PairModes& modes, double tolerance);
 
 /// The sensitivities of the step `discretization` holds (its start state and control set), at
 /// its `solution` whose pairs take `modes`: the active set fixed at sigma = 0 (FESD: the modes'
