@@ -500,14 +500,21 @@ class NodeServices(unittest.TestCase):
         offset = sum(i * d.stride // (d.size or 1) for i, d in zip(index, array.layout.dim))
         return array.data[offset]
 
-    def test_simulate_returns_the_exact_sensitivity_across_a_crossing(self):
-        # x' = 2 - sign(x) from -1: x(T) = T + x0 / 3 after the crossing at -x0 / 3.
-        request = SimulateRequest(system="two_minus_sign", sensitivities=True)
-        request.has_num_steps, request.num_steps = True, 10
+    def simulate_with_sensitivities(self, request):
+        """A successful simulation whose sensitivities are all defined."""
+        request.sensitivities = True
         response = self.simulate(request)
         self.assertEqual(response.status, SUCCESS, response.message)
+        self.assertTrue(response.sensitivities.all_defined,
+                        response.sensitivities.undefined_reason)
+        return response
+
+    def test_simulate_returns_the_exact_sensitivity_across_a_crossing(self):
+        # x' = 2 - sign(x) from -1: x(T) = T + x0 / 3 after the crossing at -x0 / 3.
+        request = SimulateRequest(system="two_minus_sign")
+        request.has_num_steps, request.num_steps = True, 10
+        response = self.simulate_with_sensitivities(request)
         sensitivities = response.sensitivities
-        self.assertTrue(sensitivities.all_defined, sensitivities.undefined_reason)
         self.assertEqual(sensitivities.state_names, ["x"])
         by_start = sensitivities.state_by_initial_state
         self.assertEqual([(d.label, d.size) for d in by_start.layout.dim],
@@ -522,21 +529,31 @@ class NodeServices(unittest.TestCase):
         moved = self.simulate(request)
         self.assertAlmostEqual(moved.solution.states[-1], 2.0 - 0.5 / 3.0, delta=1e-9)
 
+    def test_simulate_returns_the_exact_sensitivities_into_a_sliding_mode(self):
+        # x1 reaches 0 at t* = 2 x1(0) and slides; x2(T) = x2(0) + x1(0) + T / 2.
+        request = SimulateRequest(system="sliding")
+        request.has_num_steps, request.num_steps = True, 8
+        response = self.simulate_with_sensitivities(request)
+        sensitivities = response.sensitivities
+        by_start = sensitivities.state_by_initial_state
+        for row, column, value in [(0, 0, 0.0), (0, 1, 0.0), (1, 0, 1.0), (1, 1, 1.0)]:
+            self.assertAlmostEqual(self.block(by_start, 7, row, column), value, delta=1e-8)
+        self.assertAlmostEqual(response.solution.states[-1], 0.2 + 0.37 + 1.0, delta=1e-9)
+        entering = sensitivities.switch_time_by_initial_state
+        self.assertAlmostEqual(self.block(entering, 0, 0), 2.0, delta=1e-8)  # t* = 2 x1(0)
+
     def test_simulate_a_push_returns_the_saltation_of_the_projection(self):
         # The pusher (at -3, 2 m/s) meets the puck at t = 1 inside the third step of 0.4 s; from
         # then on both move at 1 m/s: the puck gains half of every shift of either start and
         # half of every extra metre the pusher is commanded.
-        request = SimulateRequest(sensitivities=True)
+        request = SimulateRequest()
         request.urdf_param = "/three_disc_scene"
         request.bodies = [body("pusher", role=BodySpec.ROLE_ACTUATED),
                           body("far", add=True, radius=0.5, initial_position=Point(0, -8, 0))]
         request.commands = [BodyTrajectory(name="pusher", controls=[Vector3(2.0, 0, 0)])]
         request.has_horizon, request.horizon = True, 2.0
         request.has_num_steps, request.num_steps = True, 5
-        response = self.simulate(request)
-        self.assertEqual(response.status, SUCCESS, response.message)
-        sensitivities = response.sensitivities
-        self.assertTrue(sensitivities.all_defined, sensitivities.undefined_reason)
+        sensitivities = self.simulate_with_sensitivities(request).sensitivities
         names, controls = sensitivities.state_names, sensitivities.control_names
         puck_x, pusher_x = names.index("puck/x"), names.index("pusher/x")
         by_start, by_controls = sensitivities.state_by_initial_state, sensitivities.state_by_controls
@@ -580,9 +597,7 @@ class NodeServices(unittest.TestCase):
             response = self.simulate(request)
             self.assertEqual(response.status, INVALID_REQUEST, response.message)
             self.assertIn(keyword, response.message)
-        after = self.simulate(SimulateRequest(system="spiral", sensitivities=True))
-        self.assertEqual(after.status, SUCCESS, after.message)
-        self.assertTrue(after.sensitivities.all_defined, after.sensitivities.undefined_reason)
+        self.simulate_with_sensitivities(SimulateRequest(system="spiral"))
 
 
 if __name__ == "__main__":

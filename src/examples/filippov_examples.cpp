@@ -147,6 +147,43 @@ Result solve(double x0_guess, bool fesd, const HomotopyOptions& homotopy) {
 
 }  // namespace sign_example
 
+namespace sliding_example {
+namespace {
+
+/// Mode 0: x1 > 0, mode 1: x1 < 0.
+struct Modes {
+  template <class T>
+  void operator()(const T*, const T*, T* F) const {
+    F[0] = T(-0.5);
+    F[1] = T(1.0);
+    F[2] = T(1.5);
+    F[3] = T(-1.0);
+  }
+};
+struct FirstState {
+  template <class T>
+  void operator()(const T* x, T* c) const {
+    c[0] = x[0];
+  }
+};
+
+}  // namespace
+
+std::shared_ptr<const StewartModel> model() {
+  static const auto instance = makeSwitchingModel(2, 0, {1}, Modes{}, FirstState{}, "sliding");
+  return instance;
+}
+
+Eigen::Vector2d initialState() {
+  return {0.37, 0.2};
+}
+
+double horizon() {
+  return 2.0;
+}
+
+}  // namespace sliding_example
+
 namespace sliding_ocp_example {
 namespace {
 

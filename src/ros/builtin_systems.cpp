@@ -27,6 +27,13 @@ std::optional<BuiltinSystem> builtinSystem(const std::string& name) {
                          {"x1", "x2"},
                          {"|x| > 1", "|x| < 1"}};
   }
+  if (name == "sliding") {
+    return BuiltinSystem{fesd::sliding_example::model(),
+                         fesd::sliding_example::initialState(),
+                         fesd::sliding_example::horizon(),
+                         {"x1", "x2"},
+                         {"x1 > 0", "x1 < 0"}};
+  }
   return std::nullopt;
 }
 

@@ -21,8 +21,8 @@ struct BuiltinSystem {
 };
 
 /// circle_example (Pozharskiy et al. 2024, Example 1), two_minus_sign (x' = 2 - sign(x) from
-/// x0 = -1 on [0, 2], Nurkanovic et al. 2024 OCP (56)) or spiral (their eq. 47); nothing for
-/// another name.
+/// x0 = -1 on [0, 2], Nurkanovic et al. 2024 OCP (56)), spiral (their eq. 47) or sliding
+/// (sliding_example); nothing for another name.
 std::optional<BuiltinSystem> builtinSystem(const std::string& name);
 
 }  // namespace fesd_ros

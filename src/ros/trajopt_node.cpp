@@ -396,9 +396,10 @@ void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
   if (!request.system.empty()) {
     const std::optional<BuiltinSystem> builtin = builtinSystem(request.system);
     if (!builtin) {
-      return refuse(response,
-                    "unknown system '" + request.system +
-                        "' (\"\" for the scene, or circle_example, two_minus_sign, spiral)");
+      return refuse(
+          response,
+          "unknown system '" + request.system +
+              "' (\"\" for the scene, or circle_example, two_minus_sign, spiral, sliding)");
     }
     const double horizon = request.has_horizon ? request.horizon : builtin->horizon;
     if (!(horizon > 0.0) || !std::isfinite(horizon) || horizon > config_.limits.max_horizon) {

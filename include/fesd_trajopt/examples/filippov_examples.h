@@ -49,6 +49,15 @@ struct Result {
 Result solve(double x0_guess, bool fesd, const HomotopyOptions& homotopy);
 }  // namespace sign_example
 
+/// A sliding mode (Nurkanovic et al. 2024, Sec. 4.5): x1' = 1/2 - sign(x1), x2' = sign(x1). From
+/// x1(0) > 0, x1 reaches 0 at t* = 2 x1(0) and slides there (Filippov: the modes weighted 3/4 and
+/// 1/4), x2' = 1/2 all along: x(T) = (0, x2(0) + x1(0) + T / 2) for T > t*.
+namespace sliding_example {
+std::shared_ptr<const StewartModel> model();
+Eigen::Vector2d initialState();  ///< (0.37, 0.2)
+double horizon();                ///< 2
+}  // namespace sliding_example
+
 /// Nurkanovic et al. 2024, OCP (61): x = (q, v) in R^4, qdot = -sign(c(q)) + v componentwise with
 /// c = (phi1, phi2), phi1 = q1 + 0.15 q2^2, phi2 = -0.05 q1^3 + q2, vdot = u; two independent
 /// subsystems (n_sys = 2). min int_0^4 |u|^2 + |v|^2 dt, |v| <= 2, |u| <= 10, reaching
