@@ -379,7 +379,7 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
   result.totals.message = result.message;
   result.totals.wall_seconds = run.wallSeconds();
   result.totals.cpu_seconds = run.cpuSeconds();
-  return result;
+  return std::move(result);  // run.result: no copy of the trajectory and sensitivities
 }
 
 }  // namespace fesd
