@@ -116,13 +116,11 @@ void CollocationDiscretization::addStartState() {
   start_state_ = nlp_.addVariables(nx_, -kInf, kInf);
 }
 
-Eigen::SparseMatrix<double> CollocationDiscretization::startAndControlDerivatives() const {
-  std::vector<Eigen::Triplet<double>> entries;
-  for (int d = 0; d < nx_; ++d) entries.emplace_back(start_state_ + d, d, 1.0);
-  for (int d = 0; d < nu_; ++d) entries.emplace_back(grid_.controls.front() + d, nx_ + d, 1.0);
-  Eigen::SparseMatrix<double> derivatives(nlp_.numVariables(), nx_ + nu_);
-  derivatives.setFromTriplets(entries.begin(), entries.end());
-  return derivatives;
+std::vector<int> CollocationDiscretization::startAndControlVariables() const {
+  std::vector<int> variables;
+  for (int d = 0; d < nx_; ++d) variables.push_back(start_state_ + d);
+  for (int d = 0; d < nu_; ++d) variables.push_back(grid_.controls.front() + d);
+  return variables;
 }
 
 void CollocationDiscretization::fixStartState(const Eigen::VectorXd& x0) {

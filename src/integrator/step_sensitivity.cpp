@@ -25,27 +25,36 @@ PairModes modesOf(const Trajectory& piece, const std::vector<bool>& active_at_st
   return modes;
 }
 
-std::string degeneracy(const Discretization& discretization, const Trajectory& piece,
-                       const PairModes& modes, const std::vector<bool>& active_before,
-                       double tolerance) {
-  const int elements = static_cast<int>(piece.elements.size());
-  for (int e = 1; e < elements; ++e) {
-    // Two independent switches at one boundary part under perturbation, each way one of them
-    // first. (At a step's start a control jump pins them: they do not count there.)
-    int first_group = -1, first_pair = -1;
+namespace {
+
+/// Two pairs of different switching groups changing their mode at one element boundary inside
+/// the step: under perturbation either comes first. (At a step's start a control jump pins them.)
+std::string coincidingSwitches(const Discretization& discretization, const Trajectory& piece,
+                               const PairModes& modes) {
+  for (size_t e = 1; e < modes.size(); ++e) {
+    int first = -1;
     for (int k = 0; k < static_cast<int>(modes[e].size()); ++k) {
       if (modes[e][k] == modes[e - 1][k]) continue;
-      const int group = discretization.switchingGroup(k);
-      if (first_group < 0) {
-        first_group = group;
-        first_pair = k;
-      } else if (group != first_group) {
-        return "pairs " + std::to_string(first_pair) + " and " + std::to_string(k) +
+      if (first < 0) {
+        first = k;
+      } else if (discretization.switchingGroup(k) != discretization.switchingGroup(first)) {
+        return "pairs " + std::to_string(first) + " and " + std::to_string(k) +
                " switch together at t = " + std::to_string(piece.times[e]) +
                " (coinciding switches separate under perturbation)";
       }
     }
   }
+  return "";
+}
+
+}  // namespace
+
+std::string degeneracy(const Discretization& discretization, const Trajectory& piece,
+                       const PairModes& modes, const std::vector<bool>& active_before,
+                       double tolerance) {
+  const std::string coinciding = coincidingSwitches(discretization, piece, modes);
+  if (!coinciding.empty()) return coinciding;
+  const int elements = static_cast<int>(piece.elements.size());
   for (int e = 0; e < elements; ++e) {
     const ElementValues& element = piece.elements[e];
     const int stages = static_cast<int>(element.stage_multipliers.cols());
@@ -130,7 +139,7 @@ StepSensitivity stepSensitivity(Discretization& discretization, const std::vecto
   wanted.insert(wanted.end(), steps.begin(), steps.end());
   const SolutionDerivatives derivatives = newton.derivatives(
       nlp, solution, free_steps ? equalStepTies(discretization, modes) : std::vector<VariableTie>{},
-      discretization.startAndControlDerivatives(), wanted);
+      discretization.startAndControlVariables(), wanted);
   nlp.releaseActiveSet();
   nlp.setRelaxation(relaxation);
   if (!derivatives.defined) {

@@ -128,22 +128,26 @@ SimulationSensitivities fullSceneSensitivities(const SceneTask& full, const Movi
                                                const SimulationSensitivities& sensitivities) {
   const std::vector<int> indices = fullStateIndices(full, part);
   const int nx = full.scene.stateSize(), part_nx = static_cast<int>(indices.size());
-  // Rows of d(part) / d(part start, controls) as rows over (full start, controls).
-  const auto widen = [&](const Eigen::MatrixXd& rows) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  // Rows of d(part) / d(part start, controls) as rows over (full start, controls); an undefined
+  // (NaN) block stays wholly NaN.
+  const auto widen = [&](const Eigen::MatrixXd& rows) -> Eigen::MatrixXd {
     const int controls = static_cast<int>(rows.cols()) - part_nx;
+    if (!rows.allFinite()) return Eigen::MatrixXd::Constant(rows.rows(), nx + controls, kNaN);
     Eigen::MatrixXd wide = Eigen::MatrixXd::Zero(rows.rows(), nx + controls);
-    if (!rows.allFinite()) wide.setConstant(std::numeric_limits<double>::quiet_NaN());
-    for (int j = 0; j < part_nx && rows.allFinite(); ++j) wide.col(indices[j]) = rows.col(j);
+    for (int j = 0; j < part_nx; ++j) wide.col(indices[j]) = rows.col(j);
     wide.rightCols(controls) = rows.rightCols(controls);
     return wide;
   };
   SimulationSensitivities result = sensitivities;
-  for (size_t k = 0; k < sensitivities.states.size(); ++k) {
-    const Eigen::MatrixXd wide = widen(sensitivities.states[k]);
-    Eigen::MatrixXd& state = result.states[k];
+  for (Eigen::MatrixXd& state : result.states) {
+    const Eigen::MatrixXd wide = widen(state);
+    if (!wide.allFinite()) {
+      state = Eigen::MatrixXd::Constant(nx, wide.cols(), kNaN);
+      continue;
+    }
     state = Eigen::MatrixXd::Zero(nx, wide.cols());
-    if (!wide.allFinite()) state.setConstant(std::numeric_limits<double>::quiet_NaN());
-    for (int i = 0; i < nx && wide.allFinite(); ++i) state(i, i) = 1.0;  // frozen: its own start
+    state.leftCols(nx).setIdentity();  // a frozen body: its own start
     for (int i = 0; i < part_nx; ++i) state.row(indices[i]) = wide.row(i);
   }
   for (Eigen::RowVectorXd& row : result.switch_times) row = widen(row);

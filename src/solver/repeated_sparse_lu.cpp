@@ -177,44 +177,32 @@ void RepeatedSparseLu::eliminate(const Eigen::SparseMatrix<double>& a, int k) {
 }
 
 void RepeatedSparseLu::solve(std::vector<double>& b, std::vector<double>& x) const {
-  x.resize(cols_);
-  for (int k = 0; k < cols_; ++k) {
-    const double value = b[pivot_row_[k]];
-    for (int q = l_start_[k]; q < l_start_[k + 1]; ++q) b[l_rows_[q]] -= l_values_[q] * value;
-    x[k] = value;
-  }
-  for (int k = cols_ - 1; k >= 0; --k) {
-    x[k] /= u_diagonal_[k];
-    for (int q = u_start_[k]; q < u_start_[k + 1]; ++q) x[u_steps_[q]] -= u_values_[q] * x[k];
-  }
-  std::copy(x.begin(), x.end(), b.begin());
-  for (int k = 0; k < cols_; ++k) x[column_order_[k]] = b[k];
+  solve(b, x, 1);
 }
 
 void RepeatedSparseLu::solve(std::vector<double>& b, std::vector<double>& x, int count) const {
-  // Row-major: each elimination updates `count` adjacent values, one pass over L and U.
+  // Row-major: each elimination updates `count` adjacent values, one pass over L and U; x is the
+  // work space in pivot order, b (rows >= cols) takes it before it is put in column order.
   const auto row = [count](std::vector<double>& v, int i) { return v.data() + i * count; };
-  work_rows_.assign(static_cast<size_t>(cols_) * count, 0.0);
+  x.resize(static_cast<size_t>(cols_) * count);
   for (int k = 0; k < cols_; ++k) {
     const double* value = row(b, pivot_row_[k]);
     for (int q = l_start_[k]; q < l_start_[k + 1]; ++q) {
       double* target = row(b, l_rows_[q]);
       for (int p = 0; p < count; ++p) target[p] -= l_values_[q] * value[p];
     }
-    std::copy(value, value + count, row(work_rows_, k));
+    std::copy(value, value + count, row(x, k));
   }
   for (int k = cols_ - 1; k >= 0; --k) {
-    double* value = row(work_rows_, k);
+    double* value = row(x, k);
     for (int p = 0; p < count; ++p) value[p] /= u_diagonal_[k];
     for (int q = u_start_[k]; q < u_start_[k + 1]; ++q) {
-      double* target = row(work_rows_, u_steps_[q]);
+      double* target = row(x, u_steps_[q]);
       for (int p = 0; p < count; ++p) target[p] -= u_values_[q] * value[p];
     }
   }
-  x.resize(static_cast<size_t>(cols_) * count);
-  for (int k = 0; k < cols_; ++k) {
-    std::copy(row(work_rows_, k), row(work_rows_, k) + count, row(x, column_order_[k]));
-  }
+  std::copy(x.begin(), x.end(), b.begin());
+  for (int k = 0; k < cols_; ++k) std::copy(row(b, k), row(b, k) + count, row(x, column_order_[k]));
 }
 
 }  // namespace fesd

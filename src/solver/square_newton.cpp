@@ -236,7 +236,7 @@ NewtonResult SquareNewton::solve(const NlpProblem& nlp, std::vector<double>& x,
 
 SolutionDerivatives SquareNewton::derivatives(const NlpProblem& nlp, const std::vector<double>& x,
                                               const std::vector<VariableTie>& ties,
-                                              const Eigen::SparseMatrix<double>& fixed_derivatives,
+                                              const std::vector<int>& parameters,
                                               const std::vector<int>& wanted) {
   SolutionDerivatives result;
   NewtonResult system;
@@ -254,44 +254,25 @@ SolutionDerivatives SquareNewton::derivatives(const NlpProblem& nlp, const std::
     result.failure = "singular Jacobian";
     return result;
   }
+  // J_free dx_free/dp = -J(:, p) for every parameter p at once (row-major right sides): the
+  // Jacobian's columns of the parameters' variables, in the equations (not the ties).
+  const int count = static_cast<int>(parameters.size());
+  parameter_of_.assign(nlp.numVariables(), -1);
+  for (int p = 0; p < count; ++p) parameter_of_[parameters[p]] = p;
+  right_side_.assign(static_cast<size_t>(rows) * count, 0.0);
   const SparsityPattern& pattern = nlp.jacobianPattern();
-  const int parameters = static_cast<int>(fixed_derivatives.cols());
-  result.values.resize(static_cast<int>(wanted.size()), parameters);
-  // The Jacobian entries of the equations in fixed variables that depend on the parameters.
-  fixed_column_.assign(nlp.numVariables(), 0.0);
-  for (int k = 0; k < fixed_derivatives.outerSize(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(fixed_derivatives, k); it; ++it) {
-      if (column_of_[it.row()] < 0) fixed_column_[it.row()] = 1.0;
-    }
-  }
-  std::vector<int> data_entries;
   for (int e = 0; e < pattern.nonzeros(); ++e) {
-    if (equation_of_[pattern.rows[e]] >= 0 && fixed_column_[pattern.cols[e]] != 0.0) {
-      data_entries.push_back(e);
-    }
+    const int equation = equation_of_[pattern.rows[e]], p = parameter_of_[pattern.cols[e]];
+    if (equation >= 0 && p >= 0) right_side_[equation * count + p] -= jacobian_values_[e];
   }
-  std::fill(fixed_column_.begin(), fixed_column_.end(), 0.0);
-  // J_free dx_free/dp = -J_fixed dx_fixed/dp for all parameters at once (row-major right sides);
-  // tie rows hold free variables only.
-  right_side_.assign(static_cast<size_t>(rows) * parameters, 0.0);
-  for (int p = 0; p < parameters; ++p) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(fixed_derivatives, p); it; ++it) {
-      if (column_of_[it.row()] < 0) fixed_column_[it.row()] = it.value();
-    }
-    for (int e : data_entries) {
-      right_side_[equation_of_[pattern.rows[e]] * parameters + p] -=
-          jacobian_values_[e] * fixed_column_[pattern.cols[e]];
-    }
-    for (Eigen::SparseMatrix<double>::InnerIterator it(fixed_derivatives, p); it; ++it) {
-      fixed_column_[it.row()] = 0.0;
-    }
-  }
-  lu_.solve(right_side_, step_, parameters);
+  lu_.solve(right_side_, step_, count);
+  result.values.resize(static_cast<int>(wanted.size()), count);
   for (size_t w = 0; w < wanted.size(); ++w) {
-    const int column = column_of_[wanted[w]];
-    for (int p = 0; p < parameters; ++p) {
-      result.values(static_cast<int>(w), p) =
-          column >= 0 ? step_[column * parameters + p] : fixed_derivatives.coeff(wanted[w], p);
+    const int column = column_of_[wanted[w]], own = parameter_of_[wanted[w]];
+    for (int p = 0; p < count; ++p) {
+      result.values(static_cast<int>(w), p) = column >= 0 ? step_[column * count + p]
+                                              : own == p  ? 1.0
+                                                          : 0.0;
     }
   }
   result.defined = true;

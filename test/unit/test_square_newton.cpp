@@ -169,11 +169,6 @@ struct ParametricParabola {
     if (extra_row == kSameLine) nlp.addLinear(nlp.addRows(1, -2.0, -2.0), {{x, 2.0}, {y, -2.0}});
     nlp.finalize();
   }
-  Eigen::SparseMatrix<double> byParameter() const {
-    Eigen::SparseMatrix<double> derivatives(nlp.numVariables(), 1);
-    derivatives.insert(p, 0) = 1.0;
-    return derivatives;
-  }
 };
 
 TEST(SquareNewton, DerivativesAtARootAreThoseOfTheImplicitFunction) {
@@ -182,8 +177,8 @@ TEST(SquareNewton, DerivativesAtARootAreThoseOfTheImplicitFunction) {
   fesd::SquareNewton newton;
   ASSERT_TRUE(newton.solve(problem.nlp, point).converged);
   EXPECT_NEAR(point[problem.x], 1.0, 1e-12);
-  const fesd::SolutionDerivatives derivatives = newton.derivatives(
-      problem.nlp, point, {}, problem.byParameter(), {problem.x, problem.y, problem.p});
+  const fesd::SolutionDerivatives derivatives =
+      newton.derivatives(problem.nlp, point, {}, {problem.p}, {problem.x, problem.y, problem.p});
   ASSERT_TRUE(derivatives.defined) << derivatives.failure;
   EXPECT_LT(derivatives.residual, 1e-12);
   EXPECT_NEAR(derivatives.values(0, 0), 1.0 / 3.0, 1e-12);  // the root is exact to 1e-12
@@ -204,7 +199,7 @@ TEST(SquareNewton, DerivativesOfMoreEquationsThanUnknownsComeFromThePivotRows) {
   fesd::SquareNewton newton;
   ASSERT_TRUE(newton.solve(problem.nlp, point).converged);
   const fesd::SolutionDerivatives derivatives =
-      newton.derivatives(problem.nlp, point, {}, problem.byParameter(), {problem.x});
+      newton.derivatives(problem.nlp, point, {}, {problem.p}, {problem.x});
   ASSERT_TRUE(derivatives.defined) << derivatives.failure;
   EXPECT_NEAR(derivatives.values(0, 0), 1.0 / 3.0, 1e-12);
 }
@@ -215,7 +210,7 @@ TEST(SquareNewton, DerivativesWhereTheJacobianIsSingularAreNotDefined) {
   const std::vector<double> point{-0.5, 0.5, 0.75};
   fesd::SquareNewton newton;
   const fesd::SolutionDerivatives derivatives =
-      newton.derivatives(problem.nlp, point, {}, problem.byParameter(), {problem.x});
+      newton.derivatives(problem.nlp, point, {}, {problem.p}, {problem.x});
   EXPECT_FALSE(derivatives.defined);
   EXPECT_EQ(derivatives.failure, "singular Jacobian");
 }

@@ -46,7 +46,7 @@ class CollocationDiscretization : public Discretization {
   /// The pair alone takes the other mode (the constraints of a PDS are independent).
   void switchPair(PairModes& modes, int pair, int boundary, bool was_active) const override;
 
-  Eigen::SparseMatrix<double> startAndControlDerivatives() const override;
+  std::vector<int> startAndControlVariables() const override;
   int finalStateIndex() const override { return grid_.end_states.back(); }
   std::vector<int> stepIndices() const override { return grid_.steps; }
 

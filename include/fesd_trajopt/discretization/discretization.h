@@ -4,7 +4,6 @@
 #include <vector>
 
 #include <Eigen/Dense>
-#include <Eigen/SparseCore>
 
 #include "fesd_trajopt/discretization/discretization_options.h"
 #include "fesd_trajopt/discretization/trajectory.h"
@@ -71,11 +70,11 @@ class Discretization {
   /// Switches `pair`, found violating its signs in mode `was_active`, to the other mode from
   /// element `boundary` on, with whatever else that switch implies for the other pairs.
   virtual void switchPair(PairModes& modes, int pair, int boundary, bool was_active) const = 0;
-  /// What the sensitivities of a simulation step (one control interval) differentiate: the
-  /// variables that setInitialState and fixControl(0, u) fix (the start state, the control) by
-  /// (x0, u), as a sparse variables x (n_x + n_u) matrix. Data the model derives from them (a
-  /// PDS's c(x0)) enter no equation of a step's active-set system, only its decisions.
-  virtual Eigen::SparseMatrix<double> startAndControlDerivatives() const = 0;
+  /// What the sensitivities of a simulation step (one control interval) differentiate by: the
+  /// variables setInitialState and fixControl(0, u) fix, x0's then u's. Data the model derives
+  /// from them (a PDS's c(x0)) enter no equation of a step's active-set system, only its
+  /// decisions.
+  virtual std::vector<int> startAndControlVariables() const = 0;
   /// The first index of the state at the last element's end.
   virtual int finalStateIndex() const = 0;
   /// Each element's length, in order.

@@ -62,8 +62,7 @@ class RepeatedSparseLu {
   std::vector<double> l_values_;
   std::vector<int> u_start_, u_steps_;  ///< U(:, k) above the diagonal: positions j < k
   std::vector<double> u_values_, u_diagonal_;
-  std::vector<double> work_;               ///< per row, zero between uses
-  mutable std::vector<double> work_rows_;  ///< the multiple right-hand sides' solve
+  std::vector<double> work_;  ///< per row, zero between uses
   /// The depth-first search's stack (rows, and where each continues in its column of L), its
   /// output (filled from the end) and marks, per row.
   std::vector<int> dfs_rows_, dfs_next_, dfs_output_;

@@ -72,15 +72,14 @@ class SquareNewton {
                      const std::vector<VariableTie>& ties = {});
 
   /// The implicit function theorem at a solution x of the system (the same equations and ties
-  /// as solve()): with the fixed variables depending on parameters p as `fixed_derivatives`
-  /// (variables x parameters, sparse), J_free dx_free/dp = -J_fixed dx_fixed/dp, on the exact
+  /// as solve()) by `parameters`, fixed variables: J_free dx_free/dp = -J(:, p) on the exact
   /// Jacobian at x, factorised afresh. Returns dx/dp for the `wanted` variables (free or fixed).
   /// With more equations than unknowns, the LU's pivot rows, as solve(). Not defined where the
   /// equations are fewer than the free variables or the Jacobian is singular. The residual says
   /// how well x solves the system and sits on its fixed variables' values.
   SolutionDerivatives derivatives(const NlpProblem& nlp, const std::vector<double>& x,
                                   const std::vector<VariableTie>& ties,
-                                  const Eigen::SparseMatrix<double>& fixed_derivatives,
+                                  const std::vector<int>& parameters,
                                   const std::vector<int>& wanted);
 
  private:
@@ -118,7 +117,7 @@ class SquareNewton {
   Eigen::SparseMatrix<double> matrix_;
   std::vector<int> value_slot_;  ///< per Jacobian entry: its slot in matrix_, or -1
   std::vector<double> residual_, previous_residual_, right_side_, step_, previous_free_values_;
-  std::vector<double> fixed_column_;  ///< derivatives(): one parameter's column, per variable
+  std::vector<int> parameter_of_;  ///< derivatives(): per variable, its parameter or -1
   RepeatedSparseLu lu_;
 };
 
