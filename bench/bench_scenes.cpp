@@ -18,6 +18,19 @@ fesd::SceneTask showcaseWithRocks(int intervals, int rocks) {
   return task;
 }
 
+fesd::SceneSolveOptions nodeDefaultOptions(double budget) {
+  fesd::SceneSolveOptions options;
+  options.ocp.discretization.num_elements = 3;
+  options.ocp.discretization.num_stages = 2;
+  options.ocp.homotopy.wall_time_budget = budget;
+  options.lazy_pairs = true;
+  options.pair_margin = 0.1;
+  options.verify = true;
+  options.verification.num_stages = 3;
+  options.verification.num_elements = 6;
+  return options;
+}
+
 std::shared_ptr<const fesd::KinematicModel> shippedRobot(const std::string& file) {
   std::ifstream stream(std::string(FESD_ROBOTS_DIR) + "/" + file);
   std::stringstream text;

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "fesd_trajopt/kinematics/kinematic_model.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 #include "fesd_trajopt/scene/scene_task.h"
 
 namespace fesd_bench {
@@ -11,6 +12,11 @@ namespace fesd_bench {
 /// The showcase plus `rocks` passive discs (R = 1, no target) at (-12 + 4 i, -12): with all seven
 /// it is node_roundtrip's ten_discs_in_reach.
 fesd::SceneTask showcaseWithRocks(int intervals, int rocks);
+
+/// The options of the node's default request (config/fesd_trajopt.yaml: 3 elements, 2 stages,
+/// lazy pairs with margin 0.1, verified on n_s = 3, N_FE = 6) within `budget` seconds; its
+/// accuracy target is 1e-2 (solveToAccuracy).
+fesd::SceneSolveOptions nodeDefaultOptions(double budget);
 
 /// A robot of config/robots, built from its URDF; throws naming the file if that fails.
 std::shared_ptr<const fesd::KinematicModel> shippedRobot(const std::string& file);

@@ -18,6 +18,7 @@ int homotopyFailures(const Arguments& args);
 int simulationSweep(const Arguments& args);
 int replan(const Arguments& args);
 int planningSweep(const Arguments& args);
+int closedLoop(const Arguments& args);
 int sweepAccuracy(const Arguments& args);
 int kkt(const Arguments& args);
 int kktSolvers(const Arguments& args);

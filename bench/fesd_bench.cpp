@@ -18,6 +18,15 @@ struct Command {
 
 const std::map<std::string, Command>& commands() {
   static const std::map<std::string, Command> table = {
+      {"closed-loop",
+       {fesd_bench::closedLoop,
+        "Plans executed with feedback over the planning sweep's scenes: the first plan at the\n"
+        "    node's defaults, its open-loop replay, replans every --every intervals from the\n"
+        "    plant's state, warm from the plan before: the pushed body's distance from its target\n"
+        "    open and closed loop, the replans' time over the first plan's, CSV.\n"
+        "    --families=cluttered --first-seed=0 --scenes=12 --every=3 --budget=60 --horizon\n"
+        "    --intervals --min-open-loop=0 (only scenes whose open loop misses by more)\n"
+        "    --replans (a line per replan)"}},
       {"derivatives",
        {fesd_bench::derivatives,
         "Cost of one model evaluation (value + Jacobian + Hessian): analytic vs Eigen AutoDiff.\n"

@@ -4,12 +4,17 @@
 // plan and of the verification. CSV, then a summary against the showcase's wall time.
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "bench_args.h"
+#include "bench_scenes.h"
 #include "commands.h"
+#include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/examples/planning_scenes.h"
+#include "fesd_trajopt/planning/accuracy_ladder.h"
+#include "fesd_trajopt/solver/stopwatch.h"
 #include "showcase_reference.h"
 
 namespace fesd_bench {
@@ -24,11 +29,104 @@ std::string stepIterations(const fesd::MpccReport& report) {
   return text;
 }
 
+/// Each homotopy step as sigma:iterations (0: a polishing solve), "1e-2:21 0:12".
+std::string stepHistory(const fesd::MpccReport& report) {
+  std::string text;
+  for (const fesd::HomotopyStep& step : report.history) {
+    char item[48];
+    std::snprintf(item, sizeof item, "%s%.0e:%d", text.empty() ? "" : " ", step.sigma,
+                  step.iterations);
+    text += item;
+  }
+  return text;
+}
+
 double median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
   const size_t middle = values.size() / 2;
   return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
+}
+
+/// The node's default request for each scene (verified, the accuracy ladder, the node's budget
+/// and pairs): status, seconds, iterations, rungs, errors; CSV, then a summary against the
+/// node's default request of the default scene in the same run.
+int nodeDefaultSweep(const Arguments& args, const std::vector<std::string>& families,
+                     int first_seed, int scenes) {
+  namespace ps = fesd::planning_scenes;
+  fesd::SceneSolveOptions options = nodeDefaultOptions(args.number("budget", 120.0));
+  options.first_round_margin = args.number("first-margin", options.first_round_margin);
+  const double accuracy = args.number("accuracy", 1e-2);
+  const double horizon = args.number("horizon", 0.0);
+  const int intervals = args.integer("intervals", 0);
+  args.rejectUnused();
+  // The second of three runs: the first pays for what a node pays once (analyses, caches).
+  fesd::SceneOutcome reference;
+  std::vector<double> default_runs;
+  for (int run = 0; run < 3; ++run) {
+    fesd::Stopwatch default_time;
+    reference = fesd::solveToAccuracy(fesd::manipulation_example::task(40), fesd::TaskLimits{},
+                                      options, accuracy);
+    default_runs.push_back(default_time.wallSeconds());
+  }
+  const double default_seconds = median({default_runs[1], default_runs[2]});
+  std::printf(
+      "# default scene, node default request: %s, %d Ipopt iterations, %.3f s (first run %.3f s), "
+      "verification error %.3g, open loop %.3g, gain %.3g\n",
+      fesd::statusName(reference.status).c_str(), reference.report.iterations, default_seconds,
+      default_runs[0], reference.verification.error, reference.verification.open_loop_error,
+      reference.verification.open_loop_gain);
+  std::printf(
+      "family,seed,status,wall_s,ratio,ipopt_iterations,objective,rungs,pair_rounds,graze_rounds,"
+      "verification_error,open_loop_error,open_loop_gain,grazes,verification_s,target_distance,"
+      "rung_changes,history,description\n");
+  std::vector<double> walls;
+  int count = 0, successes = 0;
+  for (const std::string& family : families) {
+    for (int seed = first_seed; seed < first_seed + scenes; ++seed) {
+      ps::PlanningScene scene = ps::scene(family, seed);
+      if (horizon > 0.0) scene.task.horizon = horizon;
+      if (intervals > 0) scene.task.num_intervals = intervals;
+      fesd::Stopwatch stopwatch;
+      const fesd::SceneOutcome outcome =
+          fesd::solveToAccuracy(scene.task, fesd::TaskLimits{}, options, accuracy);
+      const double seconds = stopwatch.wallSeconds();
+      ++count;
+      successes += outcome.solved() && outcome.status == fesd::SolveStatus::kSuccess;
+      walls.push_back(seconds);
+      const double target = outcome.target_distances.empty()
+                                ? std::numeric_limits<double>::quiet_NaN()
+                                : outcome.target_distances[scene.pushed];
+      std::string changes;
+      for (size_t r = 1; r < outcome.refinements.size(); ++r) {
+        const fesd::AccuracyRung& rung = outcome.refinements[r];
+        char line[64];
+        std::snprintf(line, sizeof line, " (%.3g s, %.2g)", rung.wall_seconds,
+                      rung.verification_error);
+        changes += (changes.empty() ? "" : " | ") + rung.change + line;
+      }
+      const fesd::Verification& v = outcome.verification;
+      std::printf(
+          "%s,%u,%s,%.3f,%.1f,%d,%.10g,%zu,%d,%d,%.3g,%.3g,%.3g,%zu,%.3f,%.3g,\"%s\",%s,%s\n",
+          family.c_str(), scene.seed,
+          outcome.solved() ? fesd::statusName(outcome.status).c_str() : "refused", seconds,
+          seconds / default_seconds, outcome.report.iterations, outcome.report.objective,
+          outcome.refinements.size(), outcome.pair_rounds, outcome.graze_rounds, v.error,
+          v.open_loop_error, v.open_loop_gain, v.grazes.size(), v.seconds, target, changes.c_str(),
+          stepHistory(outcome.report).c_str(), scene.description.c_str());
+      if (!outcome.solved() || outcome.status != fesd::SolveStatus::kSuccess) {
+        std::fprintf(stderr, "# %s %u: %s\n", family.c_str(), scene.seed, outcome.message.c_str());
+      }
+      std::fflush(stdout);
+    }
+  }
+  const double slowest = walls.empty() ? 0.0 : *std::max_element(walls.begin(), walls.end());
+  std::printf(
+      "# %d scenes: %d SUCCESS; wall time median %.3f s, slowest %.3f s (%.1fx and %.1fx "
+      "the default scene's)\n",
+      count, successes, median(walls), slowest, median(walls) / default_seconds,
+      slowest / default_seconds);
+  return 0;
 }
 
 }  // namespace
@@ -38,6 +136,9 @@ int planningSweep(const Arguments& args) {
   const std::vector<std::string> families = args.texts("families", ps::families());
   const int first_seed = args.integer("first-seed", 0);
   const int scenes = args.integer("scenes", 20);
+  if (args.text("mode", "solve") == "node") {
+    return nodeDefaultSweep(args, families, first_seed, scenes);
+  }
   const std::string pairs = args.text("pairs", "lazy");
   fesd::SceneSolveOptions options;
   options.ocp.discretization.num_elements = args.integer("elements", 3);

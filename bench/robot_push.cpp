@@ -97,7 +97,7 @@ int robotPush(const Arguments& args) {
       "  target distance %.2e; smallest gap at the element boundaries %.2e (every pair in reach), "
       "in the re-simulation %.2e; verification error %.2e\n",
       outcome.target_distances[0], fesd::smallestBoundaryGap(scene, in_reach, outcome.trajectory),
-      outcome.verification_gap, outcome.verification_error);
+      outcome.verification.gap, outcome.verification.error);
   // Enough digits to compare plans across BLAS builds (tools/with_blas.sh).
   const Eigen::VectorXd end = outcome.trajectory.finalState();
   std::printf("  objective %.12g; end state", outcome.report.objective);

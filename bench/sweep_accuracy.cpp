@@ -1,6 +1,7 @@
 // sweep-accuracy: what accuracy costs in time over the planning sweep's scenes. Each scene climbs
 // the node's accuracy ladder to the end (a target no rung meets): per rung its discretisation,
 // wall time (solve and verification) and verification error, CSV.
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <string>
@@ -9,6 +10,7 @@
 #include "bench_args.h"
 #include "commands.h"
 #include "fesd_trajopt/examples/planning_scenes.h"
+#include "fesd_trajopt/planning/accuracy_ladder.h"
 
 namespace fesd_bench {
 
@@ -43,8 +45,10 @@ int sweepAccuracy(const Arguments& args) {
         const fesd::AccuracyRung& rung = outcome.refinements[r];
         cumulative += rung.wall_seconds;
         std::printf("%s,%u,%zu,%d,%d,%s,%.3f,%.3f,%.3g\n", family.c_str(), scene.seed, r + 1,
-                    rung.stages, rung.elements, fesd::statusName(rung.status).c_str(),
-                    rung.wall_seconds, cumulative, rung.verification_error);
+                    rung.stages,
+                    *std::max_element(rung.interval_elements.begin(), rung.interval_elements.end()),
+                    fesd::statusName(rung.status).c_str(), rung.wall_seconds, cumulative,
+                    rung.verification_error);
       }
       if (!outcome.solved()) {
         std::printf("%s,%u,0,0,0,refused,0,0,inf\n", family.c_str(), scene.seed);

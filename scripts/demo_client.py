@@ -66,8 +66,19 @@ def main():
     print("  solve %.2f s (Ipopt %.2f s, evaluations %.2f s); round trip %.2f s" % (
         stats.wall_time, stats.ipopt_time, stats.evaluation_time, round_trip))
     if solution.verified:
-        print("  re-simulated on a finer grid: end state deviates by %.3g" %
-              solution.verification_error)
+        print("  re-simulated on a finer grid interval by interval: largest error %.3g; open loop "
+              "the end deviates by %.3g (a deviation grows up to %.3g-fold)%s" % (
+                  solution.verification_error, solution.open_loop_error,
+                  solution.open_loop_gain,
+                  ": execute with feedback" if solution.needs_feedback else ""))
+        for graze in solution.grazes:
+            print("  graze %s/%s at t = %.4f: the plan's gap %.3g%s" % (
+                graze.pair.first, graze.pair.second, graze.time, graze.depth,
+                ", touched in the re-simulation" if graze.touched else ""))
+    for rung in solution.refinements[1:]:
+        print("  rung: %s (%s): error %.3g -> %.3g in %.2f s%s" % (
+            rung.change, rung.reason, rung.error_before, rung.verification_error, rung.wall_time,
+            "" if rung.from_previous_plan else ", cold"))
     return 0 if response.status == 0 else 1
 
 

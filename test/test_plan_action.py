@@ -30,8 +30,11 @@ def moved_target(dx, warm_start=False, target_accuracy=-1.0):
 
 
 def long_goal():
-    """The default scene with an accuracy target no rung reaches: the ladder runs for seconds."""
-    return PlanTrajectoryGoal(request=PlanRequest(target_accuracy=1e-14))
+    """The default scene on the most intervals with an accuracy target no rung reaches: the ladder
+    runs for tens of seconds, long after the tests that cancel it."""
+    request = PlanRequest(target_accuracy=1e-14)
+    request.has_num_intervals, request.num_intervals = True, 200
+    return PlanTrajectoryGoal(request=request)
 
 
 def solver_threads():
@@ -168,7 +171,6 @@ class PlanAction(unittest.TestCase):
         self.assertFalse(cold.solution.statistics.warm_started)
         self.assertLess(warm.solution.statistics.ipopt_iterations,
                         cold.solution.statistics.ipopt_iterations / 2)
-        self.assertLess(warm.solution.statistics.wall_time, cold.solution.statistics.wall_time)
         changed = moved_target(0.0, warm_start=True)
         changed.has_num_elements, changed.num_elements = True, 2
         fallback = self.solve(changed)
@@ -189,14 +191,22 @@ class PlanAction(unittest.TestCase):
         self.assertLessEqual(replan.solution.verification_error, 1e-2)
 
     def test_an_accuracy_target_is_met_by_refining_and_every_rung_is_reported(self):
-        answer = self.solve(PlanRequest(target_accuracy=1e-3))
+        answer = self.solve(PlanRequest(target_accuracy=1e-7))
         self.assertEqual(answer.status, Solution.SUCCESS, answer.message)
         solution = answer.solution
         self.assertTrue(solution.verified)
-        self.assertLessEqual(solution.verification_error, 1e-3)
+        self.assertLessEqual(solution.verification_error, 1e-7)
         rungs = solution.refinements
-        self.assertEqual([(r.num_stages, r.num_elements) for r in rungs], [(2, 3), (3, 3)])
-        self.assertGreater(rungs[0].verification_error, 1e-3)
+        self.assertGreaterEqual(len(rungs), 2)
+        self.assertEqual((rungs[0].num_stages, rungs[0].num_elements, rungs[0].change), (2, 3, ""))
+        self.assertEqual(list(rungs[0].interval_elements), [3] * 40)
+        for before, rung in zip(rungs, rungs[1:]):
+            # Each rung refines what the one before was blamed for, from its plan.
+            self.assertGreater(before.verification_error, 1e-7)
+            self.assertEqual(rung.error_before, before.verification_error)
+            self.assertTrue(rung.from_previous_plan, rung.change)
+            self.assertTrue(rung.change and rung.reason, rung)
+            self.assertGreater(len(rung.refined_intervals), 0)
         self.assertEqual(rungs[-1].verification_error, solution.verification_error)
         self.assertTrue(all(r.status == Solution.SUCCESS and r.wall_time > 0 for r in rungs))
         self.assertLessEqual(sum(r.wall_time for r in rungs), solution.statistics.wall_time)
@@ -209,6 +219,13 @@ class PlanAction(unittest.TestCase):
         self.assertLessEqual(solution.verification_error, 1e-2)  # ~target_accuracy
         self.assertEqual([(r.num_stages, r.num_elements) for r in solution.refinements], [(2, 3)])
         self.assertIn("accuracy target 0.01 met on rung 1", answer.message)
+        # Interval by interval the plan is accurate; open loop its end drifts further, by less
+        # than the target here (two pushers hold the object): no feedback needed.
+        self.assertLess(solution.verification_error, solution.open_loop_error)
+        self.assertLess(solution.open_loop_error, 1e-2)
+        self.assertGreater(solution.open_loop_gain, 1.0)
+        self.assertFalse(solution.needs_feedback)
+        self.assertEqual(list(solution.grazes), [])
         unverified = self.solve(PlanRequest(target_accuracy=-1.0))
         self.assertEqual(unverified.status, Solution.SUCCESS, unverified.message)
         self.assertFalse(unverified.solution.verified)
@@ -218,8 +235,9 @@ class PlanAction(unittest.TestCase):
         # (the time it saves is measured by bench/node_roundtrip.sh: timings do not belong here)
 
     def test_an_accuracy_target_out_of_a_tiny_budget_is_not_a_success(self):
+        # A nanosecond: spent before the first rung can solve, on any machine.
         request = PlanRequest(target_accuracy=1e-3)
-        request.has_wall_time_budget, request.wall_time_budget = True, 0.05
+        request.has_wall_time_budget, request.wall_time_budget = True, 1e-9
         answer = self.solve(request)
         self.assertEqual(answer.status, Solution.TIMEOUT, answer.message)
         self.assertIn("not met", answer.message)

@@ -147,7 +147,9 @@ class RobotNodeTest(unittest.TestCase):
                       response.message)
         self.assertGreaterEqual(len(rungs), 2)
         self.assertEqual((rungs[0].num_stages, rungs[0].num_elements), (2, ELEMENTS))
-        self.assertEqual((rungs[1].num_stages, rungs[1].num_elements), (3, ELEMENTS))
+        for before, rung in zip(rungs, rungs[1:]):
+            self.assertEqual(rung.error_before, before.verification_error)
+            self.assertTrue(rung.change, rung)
         best = min(r.verification_error for r in rungs)
         self.assertEqual(response.solution.verification_error, best)
         self.assertEqual(response.status == Solution.SUCCESS, best <= 1e-6)

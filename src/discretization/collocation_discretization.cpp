@@ -20,7 +20,7 @@ CollocationDiscretization::CollocationDiscretization(OcpDefinition ocp,
   validateOcp(ocp_, options_);
   nx_ = ocp_.model->stateSize();
   nu_ = ocp_.model->controlSize();
-  nominal_step_ = fesd::nominalStep(ocp_, options_);
+  grid_ = elementLayout(ocp_, options_);
 }
 
 void CollocationDiscretization::fixControl(int interval, const Eigen::VectorXd& u) {
@@ -177,7 +177,7 @@ void CollocationDiscretization::addRungeKuttaRows(
 std::vector<int> CollocationDiscretization::innerBoundaries() const {
   std::vector<int> elements;
   for (int e = 1; e < numElements(); ++e) {
-    if (e % options_.num_elements != 0) elements.push_back(e);
+    if (!grid_.startsInterval(e)) elements.push_back(e);
   }
   return elements;
 }

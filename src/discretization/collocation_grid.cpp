@@ -34,6 +34,14 @@ void validateOcp(const OcpDefinition& ocp, const DiscretizationOptions& options)
   const int nx = ocp.model->stateSize(), nu = ocp.model->controlSize();
   if (options.num_elements < 1) throw std::invalid_argument("num_elements must be >= 1");
   if (ocp.num_intervals < 1) throw std::invalid_argument("num_intervals must be >= 1");
+  if (!options.interval_elements.empty()) {
+    if (static_cast<int>(options.interval_elements.size()) != ocp.num_intervals) {
+      throw std::invalid_argument("interval_elements must have one count per control interval");
+    }
+    for (int count : options.interval_elements) {
+      if (count < 1) throw std::invalid_argument("interval_elements must all be >= 1");
+    }
+  }
   if (!(ocp.horizon > 0.0) || !std::isfinite(ocp.horizon)) {
     throw std::invalid_argument("horizon must be positive and finite");
   }
@@ -61,8 +69,31 @@ void validateOcp(const OcpDefinition& ocp, const DiscretizationOptions& options)
   requireFunction(ocp.terminal_constraints, nx, false, "terminal_constraints");
 }
 
-double nominalStep(const OcpDefinition& ocp, const DiscretizationOptions& options) {
-  return ocp.horizon / (ocp.num_intervals * options.num_elements);
+std::vector<int> intervalElements(const OcpDefinition& ocp, const DiscretizationOptions& options) {
+  if (!options.interval_elements.empty()) return options.interval_elements;
+  return std::vector<int>(ocp.num_intervals, options.num_elements);
+}
+
+CollocationGrid elementLayout(const OcpDefinition& ocp, const DiscretizationOptions& options) {
+  CollocationGrid grid;
+  const std::vector<int> counts = intervalElements(ocp, options);
+  grid.first_element.push_back(0);
+  for (int k = 0; k < ocp.num_intervals; ++k) {
+    grid.first_element.push_back(grid.first_element.back() + counts[k]);
+    grid.element_interval.insert(grid.element_interval.end(), counts[k], k);
+    // T / (N m), as on a uniform grid (the same bits there).
+    grid.nominal_steps.insert(grid.nominal_steps.end(), counts[k],
+                              ocp.horizon / (ocp.num_intervals * counts[k]));
+  }
+  return grid;
+}
+
+double nominalTime(const CollocationGrid& grid, int element, double fraction) {
+  const int k = grid.element_interval[element];
+  const int count = grid.first_element[k + 1] - grid.first_element[k];
+  // (k m + j + fraction) h0 with h0 = T / (N m): k T / N + (j + fraction) h0, the uniform grid's
+  // (e + fraction) h0 to the bit.
+  return (k * count + element - grid.first_element[k] + fraction) * grid.nominal_steps[element];
 }
 
 std::vector<int> stateControlInputs(const CollocationGrid& grid, int state, int element, int nx,
@@ -105,8 +136,8 @@ void guessControls(const NlpAssembly& nlp, const CollocationGrid& grid, int nu,
 }
 
 void guessGridPoints(const NlpAssembly& nlp, const CollocationGrid& grid,
-                     const ButcherTableau& tableau, double h0, int nx, int nu,
-                     const TrajectoryGuess& guess, std::vector<double>& x) {
+                     const ButcherTableau& tableau, int nx, int nu, const TrajectoryGuess& guess,
+                     std::vector<double>& x) {
   if (!guess.state) throw std::invalid_argument("TrajectoryGuess: no state");
   auto set_state = [&](int first, double time) {
     const Eigen::VectorXd state = guess.state(time);
@@ -114,10 +145,11 @@ void guessGridPoints(const NlpAssembly& nlp, const CollocationGrid& grid,
     std::copy(state.data(), state.data() + nx, x.begin() + first);
   };
   for (int e = 0; e < grid.numElements(); ++e) {
-    for (int i = 0; i < tableau.stages; ++i)
-      set_state(grid.stage_states[e][i], (e + tableau.c(i)) * h0);
-    set_state(grid.end_states[e], (e + 1) * h0);
-    x[grid.steps[e]] = h0;
+    for (int i = 0; i < tableau.stages; ++i) {
+      set_state(grid.stage_states[e][i], nominalTime(grid, e, tableau.c(i)));
+    }
+    set_state(grid.end_states[e], nominalTime(grid, e, 1.0));
+    x[grid.steps[e]] = grid.nominal_steps[e];
   }
   guessControls(nlp, grid, nu, guess.controls, x);
 }
@@ -127,8 +159,8 @@ void addIntervalLengthRows(NlpAssembly& nlp, const CollocationGrid& grid,
   const double interval_length = ocp.horizon / ocp.num_intervals;
   for (int k = 0; k < ocp.num_intervals; ++k) {
     const int row = nlp.addRows(1, interval_length, interval_length);
-    for (int n = 0; n < grid.elements_per_interval; ++n) {
-      nlp.addLinear(row, grid.steps[k * grid.elements_per_interval + n], 1.0);
+    for (int e = grid.first_element[k]; e < grid.first_element[k + 1]; ++e) {
+      nlp.addLinear(row, grid.steps[e], 1.0);
     }
   }
 }
@@ -200,7 +232,7 @@ Trajectory gridTrajectory(const double* x, const CollocationGrid& grid, const Oc
   trajectory.states.push_back(Eigen::Map<const Eigen::VectorXd>(x + start_state, nx));
   for (int e = 0; e < grid.numElements(); ++e) {
     const int ns = static_cast<int>(grid.stage_states[e].size());
-    ElementValues element{e / grid.elements_per_interval,
+    ElementValues element{grid.element_interval[e],
                           time,
                           x[grid.steps[e]],
                           Eigen::MatrixXd(nx, ns),

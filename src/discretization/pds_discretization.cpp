@@ -6,6 +6,8 @@
 #include <string>
 #include <tuple>
 
+#include "fesd_trajopt/function/combination_row.h"
+
 namespace fesd {
 namespace {
 
@@ -31,6 +33,7 @@ PdsDiscretization::PdsDiscretization(OcpDefinition ocp, DiscretizationOptions op
   buildDynamics();
   buildComplementarity();
   buildStepEquilibration();
+  buildGapGuards();
   addCostsAndConstraints(nlp_, grid_, ocp_, tableau_);
   nlp_.finalize();
 }
@@ -91,7 +94,7 @@ void PdsDiscretization::buildComplementarity() {
       // distance the force moves in an element): at R = 1e-3 raw c (~1e-7) looked smaller than
       // a free pair's relaxed lambda (~1e-3), and polishing fixed contacts that were not there.
       const double scale = model_->constraintScales()(k);
-      const double c_weight = 1.0 / scale, lambda_weight = nominal_step_ * scale;
+      const double c_weight = 1.0 / scale, lambda_weight = nominalStep(e) * scale;
       if (!steps_free_) {
         for (const StagePoint& point : stages_[e]) {
           addPairComplementarity(e, k, {{point.s + k, 1.0}}, {{point.lambda + k, 1.0}}, true,
@@ -104,7 +107,7 @@ void PdsDiscretization::buildComplementarity() {
       // stage. The latter only within a control interval: a control jump may release a contact
       // with a jump of lambda, which eq. 8c (derived for continuous f) would forbid.
       const StagePoint& previous = previousPoint(e);
-      const bool previous_lambda = e % options_.num_elements != 0;
+      const bool previous_lambda = !startsInterval(e);
       LinearExpression c_side{{previous.s + k, 1.0}}, lambda_side;
       for (int i = 0; i < ns; ++i) {
         c_side.push_back({stages_[e][i].s + k, 1.0});
@@ -129,6 +132,24 @@ void PdsDiscretization::buildComplementarity() {
         }
       }
     }
+  }
+}
+
+void PdsDiscretization::buildGapGuards() {
+  for (const GapGuard& guard : options_.gap_guards) {
+    if (guard.element < 0 || guard.element >= numElements() || guard.constraint < 0 ||
+        guard.constraint >= nc_ || !(guard.fraction > 0.0 && guard.fraction < 1.0)) {
+      throw std::invalid_argument("PdsDiscretization: a gap guard outside the grid or the model");
+    }
+    const auto row = std::make_shared<CombinationRow>(
+        model_->constraints(), guard.constraint, collocationWeights(tableau_.c, guard.fraction));
+    std::vector<int> inputs;
+    std::vector<int> points{elementStartState(guard.element)};
+    for (const StagePoint& point : stages_[guard.element]) points.push_back(point.x);
+    for (int point : points) {
+      for (int coordinate : row->coordinates()) inputs.push_back(point + coordinate);
+    }
+    nlp_.addFunctionTerm(row, inputs, -1, {{nlp_.addRows(1, 0.0, kInf), 1.0}});
   }
 }
 
@@ -159,7 +180,7 @@ void PdsDiscretization::buildStepEquilibration() {
           {closure_sum(element - 1, k, true, true), closure_sum(element, k, true, false),
            closure_sum(element - 1, k, false, true), closure_sum(element, k, false, false)});
     }
-    addStepRegularizer(nlp_, options_, nominal_step_, grid_.steps[element - 1],
+    addStepRegularizer(nlp_, options_, nominalStep(element), grid_.steps[element - 1],
                        grid_.steps[element]);
     equilibration_.push_back(boundary);
   }
@@ -173,7 +194,6 @@ void PdsDiscretization::buildStepEquilibration() {
 void PdsDiscretization::addBigMEquilibration() {
   auxiliary_variables_begin_ = nlp_.numVariables();
   auxiliary_rows_begin_ = nlp_.numConstraints();
-  const double big_m = options_.pds.equilibration_big_m * nominal_step_;
   auto add_row = [&](const LinearExpression& expression, double lower, double upper) {
     const int row = nlp_.addRows(1, lower, upper);
     nlp_.addLinear(row, expression);
@@ -230,6 +250,7 @@ void PdsDiscretization::addBigMEquilibration() {
     for (int nu : aux.nu) add_row({{aux.any_switch, 1.0}, {nu, -1.0}}, 0.0, kInf);
     add_row(concat({{aux.any_switch, 1.0}}, any_switch_upper), -kInf, 0.0);
     // -eta M <= h_{n-1} - h_n <= eta M
+    const double big_m = options_.pds.equilibration_big_m * nominalStep(aux.element);
     const int h_prev = grid_.steps[aux.previous_element], h = grid_.steps[aux.element];
     add_row({{h_prev, 1.0}, {h, -1.0}, {aux.any_switch, -big_m}}, -kInf, 0.0);
     add_row({{h_prev, 1.0}, {h, -1.0}, {aux.any_switch, big_m}}, 0.0, kInf);
@@ -308,7 +329,7 @@ std::vector<double> PdsDiscretization::constantGuess(
       }
     }
   }
-  for (int e = 0; e < numElements(); ++e) x[grid_.steps[e]] = nominal_step_;
+  for (int e = 0; e < numElements(); ++e) x[grid_.steps[e]] = nominalStep(e);
   guessControls(nlp_, grid_, nu_, controls, x);
   completeDependentVariables(x);
   return x;
@@ -316,11 +337,11 @@ std::vector<double> PdsDiscretization::constantGuess(
 
 std::vector<double> PdsDiscretization::guessFrom(const TrajectoryGuess& guess) const {
   std::vector<double> x = nlp_.initialGuess();  // holds the start point's data
-  guessGridPoints(nlp_, grid_, tableau_, nominal_step_, nx_, nu_, guess, x);
+  guessGridPoints(nlp_, grid_, tableau_, nx_, nu_, guess, x);
   for (int e = 0; e < numElements(); ++e) {
     for (int i = 0; i < tableau_.stages; ++i) {
       setPairGuess(stages_[e][i],
-                   guess.multipliers ? guess.multipliers((e + tableau_.c(i)) * nominal_step_)
+                   guess.multipliers ? guess.multipliers(nominalTime(grid_, e, tableau_.c(i)))
                                      : Eigen::VectorXd::Zero(nc_),
                    x);
     }

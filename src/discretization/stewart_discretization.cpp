@@ -32,6 +32,9 @@ StewartDiscretization::StewartDiscretization(OcpDefinition ocp, DiscretizationOp
     : CollocationDiscretization(std::move(ocp), options),
       model_(std::dynamic_pointer_cast<const StewartModel>(ocp_.model)) {
   if (!model_) throw std::invalid_argument("StewartDiscretization: the model is no StewartModel");
+  if (!options_.gap_guards.empty()) {
+    throw std::invalid_argument("StewartDiscretization: gap guards are for a PDS's constraints");
+  }
   nf_ = model_->numModes();
   nsys_ = model_->numSubsystems();
   steps_free_ = options_.switch_detection;
@@ -195,12 +198,12 @@ void StewartDiscretization::buildStepEquilibration() {
       for (int i = 0; i < nf_; ++i) eq.inputs.push_back(start + i);
     }
     const EquilibrationResidual residual{
-        eq.indicator, nominal_step_,
+        eq.indicator, nominalStep(element),
         options_.filippov.step_equilibration == StepEquilibration::kTanhIndicator};
     eq.relaxed_row = nlp_.addRelaxedRows(1, options_.filippov.equilibration_relaxation);
     nlp_.addFunctionTerm(makeAutoDiffFunction(static_cast<int>(eq.inputs.size()), 1, residual),
                          eq.inputs, -1, {{eq.relaxed_row, 1.0}});
-    addStepRegularizer(nlp_, options_, nominal_step_, eq.inputs[0], eq.inputs[1]);
+    addStepRegularizer(nlp_, options_, nominalStep(element), eq.inputs[0], eq.inputs[1]);
     equilibration_.push_back(eq);
   }
   for (Equilibration& eq : equilibration_) eq.equal_steps_row = addEqualStepsRow(eq.element);
@@ -288,7 +291,7 @@ std::vector<double> StewartDiscretization::constantGuess(
       std::copy(start, start + nx_, x.begin() + point.x);
       setModeOfState(x, point);
     }
-    x[grid_.steps[e]] = nominal_step_;
+    x[grid_.steps[e]] = nominalStep(e);
   }
   guessControls(nlp_, grid_, nu_, controls, x);
   completeDependentVariables(x);
@@ -297,7 +300,7 @@ std::vector<double> StewartDiscretization::constantGuess(
 
 std::vector<double> StewartDiscretization::guessFrom(const TrajectoryGuess& guess) const {
   std::vector<double> x = nlp_.initialGuess();  // holds the start state
-  guessGridPoints(nlp_, grid_, tableau_, nominal_step_, nx_, nu_, guess, x);
+  guessGridPoints(nlp_, grid_, tableau_, nx_, nu_, guess, x);
   setModesOfStates(x);
   completeDependentVariables(x);
   return x;
@@ -330,7 +333,7 @@ std::vector<double> StewartDiscretization::translatedGuess(
       setModeOfState(x, point);
     }
     if (!stage_at_end_) Eigen::Map<Eigen::VectorXd>(x.data() + element.end_state, nx_) += shift;
-    x[grid_.steps[e]] = nominal_step_;
+    x[grid_.steps[e]] = nominalStep(e);
   }
   completeDependentVariables(x);
   return x;

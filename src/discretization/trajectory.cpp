@@ -46,17 +46,24 @@ std::vector<SwitchEvent> detectSwitches(const std::vector<ElementValues>& elemen
   return events;
 }
 
-Eigen::VectorXd collocationState(const Eigen::VectorXd& nodes, const Eigen::VectorXd& start_state,
-                                 const Eigen::MatrixXd& stage_states, double t) {
+std::vector<double> collocationWeights(const Eigen::VectorXd& nodes, double t) {
   const int points = static_cast<int>(nodes.size()) + 1;
   auto node = [&](int i) { return i == 0 ? 0.0 : nodes(i - 1); };
-  Eigen::VectorXd state = Eigen::VectorXd::Zero(start_state.size());
+  std::vector<double> weights(points, 1.0);
   for (int i = 0; i < points; ++i) {  // Lagrange basis polynomial i at t
-    double basis = 1.0;
     for (int j = 0; j < points; ++j) {
-      if (j != i) basis *= (t - node(j)) / (node(i) - node(j));
+      if (j != i) weights[i] *= (t - node(j)) / (node(i) - node(j));
     }
-    state += basis * (i == 0 ? start_state : Eigen::VectorXd(stage_states.col(i - 1)));
+  }
+  return weights;
+}
+
+Eigen::VectorXd collocationState(const Eigen::VectorXd& nodes, const Eigen::VectorXd& start_state,
+                                 const Eigen::MatrixXd& stage_states, double t) {
+  const std::vector<double> weights = collocationWeights(nodes, t);
+  Eigen::VectorXd state = weights[0] * start_state;
+  for (int i = 1; i < static_cast<int>(weights.size()); ++i) {
+    state += weights[i] * stage_states.col(i - 1);
   }
   return state;
 }

@@ -257,11 +257,11 @@ PlanningRun runScene(const PlanningScene& scene, const SceneSolveOptions& option
       smallestRelativeGap(scene.task, run.outcome.decisions, run.outcome.trajectory.states);
   if (run.outcome.status != SolveStatus::kSuccess) return run;
   Stopwatch verification_time;
-  run.verification = verifyOutcome(scene.task, run.outcome, fine, options.pair_margin);
+  run.verification = verifyPlan(scene.task, run.outcome.trajectory, run.outcome.decisions, fine,
+                                options.pair_margin, options.graze_depth);
   run.verification_seconds = verification_time.wallSeconds();
   if (run.verification.status == SolveStatus::kSuccess) {
-    run.verification_gap =
-        smallestRelativeGap(scene.task, run.outcome.decisions, run.verification.trajectory.states);
+    run.verification_gap = run.verification.relative_gap;
   }
   return run;
 }

@@ -69,10 +69,9 @@ std::vector<VariableTie> equalStepTies(const Discretization& discretization,
                                        const PairModes& modes) {
   const auto* collocation = dynamic_cast<const CollocationDiscretization*>(&discretization);
   if (!collocation || !collocation->stepsAreFree()) return {};
-  const int per_interval = collocation->options().num_elements;
   std::vector<VariableTie> ties;
   for (int e = 1; e < collocation->numElements() && e < static_cast<int>(modes.size()); ++e) {
-    if (e % per_interval != 0 && modes[e - 1] == modes[e]) {
+    if (!collocation->startsInterval(e) && modes[e - 1] == modes[e]) {
       ties.push_back({collocation->stepIndex(e - 1), collocation->stepIndex(e)});
     }
   }

@@ -34,6 +34,41 @@ bool stretched(const Trajectory& piece, double nominal, double stretch) {
       [&](const ElementValues& element) { return element.step > stretch * nominal; });
 }
 
+/// Per element of a part [start, start + length) of `elements` equal elements, the pairs with a
+/// force in the reference's element at its middle.
+PairModes referenceModes(const Trajectory& reference, double start, double length, int elements,
+                         double tolerance) {
+  PairModes modes;
+  size_t e = 0;
+  for (int n = 0; n < elements; ++n) {
+    const double t = start + (n + 0.5) * length / elements;
+    while (e + 1 < reference.elements.size() &&
+           reference.elements[e].start_time + reference.elements[e].step <= t) {
+      ++e;
+    }
+    const Eigen::MatrixXd& forces = reference.elements[e].stage_multipliers;
+    std::vector<bool> active(forces.rows());
+    for (int k = 0; k < forces.rows(); ++k) active[k] = forces.row(k).maxCoeff() > tolerance;
+    modes.push_back(active);
+  }
+  return modes;
+}
+
+/// The last element of control interval k of a trajectory, as a trajectory of its own (empty
+/// when it has none).
+Trajectory lastElementOf(const Trajectory& trajectory, int k) {
+  Trajectory last;
+  for (size_t e = trajectory.elements.size(); e-- > 0;) {
+    if (trajectory.elements[e].interval != k) continue;
+    last.elements = {trajectory.elements[e]};
+    last.states = {trajectory.states[e], trajectory.states[e + 1]};
+    last.times = {trajectory.times[e], trajectory.times[e + 1]};
+    last.stage_nodes = trajectory.stage_nodes;
+    break;
+  }
+  return last;
+}
+
 /// How good a step's solution is: exact, converged, or neither.
 int rank(const MpccReport& report, const RelaxedMpcc& nlp) {
   return exact(report, nlp) ? 2 : report.converged() ? 1 : 0;
@@ -49,8 +84,8 @@ class FesdIntegrator::Run {
       int num_steps)
       : options_(integrator.options_),
         state_(x0),
-        sensitivities_(integrator.model_->stateSize(), integrator.model_->controlSize(),
-                       num_steps) {
+        nu_(integrator.model_->controlSize()),
+        sensitivities_(integrator.model_->stateSize(), nu_, num_steps) {
     step_problem_.model = integrator.model_;
     step_problem_.initial_state = x0;
     step_problem_.horizon = step_length;
@@ -61,11 +96,25 @@ class FesdIntegrator::Run {
   /// Solves user step k (of length h) under control u.
   bool step(int k, const Eigen::VectorXd& u) {
     split_ = false;
-    step_ = k;
+    step_ = k - first_step_;
     const bool ok = solve(0, 0, u, k * step_problem_.horizon);
     result.split_steps += split_;
     sensitivities_.endStep();
     return ok;
+  }
+
+  /// Starts afresh at x before user step k, as if the run began there: the trajectory and the
+  /// sensitivities so far are dropped (the totals and the solvers stay). `arrival`: how the state
+  /// was reached (its last element's multipliers predict the active set), under `control`; empty
+  /// when unknown.
+  void restart(const Eigen::VectorXd& x, int k, Trajectory arrival,
+               const Eigen::VectorXd& control) {
+    state_ = x;
+    first_step_ = k;
+    previous_control_ = control;
+    result.trajectory = Trajectory();
+    arrival_ = std::move(arrival);
+    sensitivities_ = SensitivityChain(static_cast<int>(x.size()), nu_, 1);
   }
 
   /// The sensitivities of the whole run, with those of its switch times.
@@ -164,7 +213,8 @@ class FesdIntegrator::Run {
       return;
     }
     Part& refined_part = partOf(tenths, middles, kRefined);
-    Attempt refined = solvePart(refined_part, u, start_time);
+    Attempt refined =
+        solvePart(refined_part, u, start_time, !is_exact || options_.refine_by_homotopy);
     // Kept only within the stretch bound of the coarser elements: a refined part whose switches
     // took several boundaries can leave an element longer than that.
     if (exact(refined.report, refined_part.discretization->nlp()) &&
@@ -196,9 +246,9 @@ class FesdIntegrator::Run {
     } else if (attempt.fixed_steps) {
       part.why_undefined = "integrated with fixed steps where FESD found no solution";
     } else if (attempt.discretization->stepsAreFree()) {
-      const std::vector<bool> active_before = result.trajectory.elements.empty()
-                                                  ? std::vector<bool>{}
-                                                  : activeAtEnd(result.trajectory, tolerance);
+      const Trajectory* before = arrivedFrom();
+      const std::vector<bool> active_before =
+          before == nullptr ? std::vector<bool>{} : activeAtEnd(*before, tolerance);
       part.why_undefined = degeneracy(*attempt.discretization, attempt.piece, attempt.modes,
                                       active_before, tolerance);
       if (part.why_undefined.empty()) {
@@ -212,12 +262,15 @@ class FesdIntegrator::Run {
                            options_.homotopy.complementarity_tolerance, sensitivity_newton_);
   }
 
-  /// One part from the current state: the homotopy, and its retry path if that is not exact.
-  Attempt solvePart(Part& part, const Eigen::VectorXd& u, double start_time) {
+  /// One part from the current state: its active sets, then (`homotopy_fallback`, or without
+  /// active-set steps) the homotopy and its retry path if that is not exact.
+  Attempt solvePart(Part& part, const Eigen::VectorXd& u, double start_time,
+                    bool homotopy_fallback = true) {
     Discretization& discretization = *part.discretization;
     discretization.setInitialState(state_);
-    if (!result.trajectory.elements.empty()) {
-      discretization.continueFrom(result.trajectory,
+    const Trajectory* before = arrivedFrom();
+    if (before != nullptr) {
+      discretization.continueFrom(*before,
                                   previous_control_.size() == u.size() && previous_control_ == u);
     }
     if (u.size() > 0) discretization.fixControl(0, u);
@@ -231,12 +284,15 @@ class FesdIntegrator::Run {
     // Out of time, the homotopy reports the timeout (with its interrupted iterate).
     if (options_.active_set_steps && remainingBudget() != 0.0 &&
         (discretization.stepsAreFree() || nlp.numComplementarities() == 0)) {
-      const bool first = result.trajectory.elements.empty();
+      const bool first = before == nullptr;
       const PairModes predicted =
-          predictModes(first ? nullptr : &result.trajectory,
-                       first ? discretization.activeAt(state_, options_.activity_tolerance)
-                             : std::vector<bool>{},
-                       part.num_elements, options_.homotopy.complementarity_tolerance);
+          reference_ != nullptr
+              ? referenceModes(*reference_, start_time, part.length, part.num_elements,
+                               options_.activity_tolerance)
+              : predictModes(before,
+                             first ? discretization.activeAt(state_, options_.activity_tolerance)
+                                   : std::vector<bool>{},
+                             part.num_elements, options_.homotopy.complementarity_tolerance);
       ActiveSetOptions fast_options;
       fast_options.tolerance = options_.homotopy.complementarity_tolerance;
       fast_options.start_time = start_time;
@@ -253,6 +309,11 @@ class FesdIntegrator::Run {
         part.previous_solution = attempt.report.solution;
         return attempt;
       }
+    }
+    if (!homotopy_fallback && options_.active_set_steps) {
+      attempt.report.status = SolveStatus::kComplementarityNotMet;
+      attempt.report.message = "no active set found";
+      return attempt;
     }
     attempt.report = homotopy(solver_, options_.homotopy)
                          .solve(discretization.nlp(), guess, -1.0, remainingBudget());
@@ -279,6 +340,13 @@ class FesdIntegrator::Run {
     return attempt;
   }
 
+  /// What the current state was reached by: the trajectory so far, else the arrival given to
+  /// restart; nullptr at a start with no history.
+  const Trajectory* arrivedFrom() const {
+    if (!result.trajectory.elements.empty()) return &result.trajectory;
+    return arrival_.elements.empty() ? nullptr : &arrival_;
+  }
+
   /// A homotopy solver, built when first needed: building one (an Ipopt application) costs
   /// ~0.15 ms, more than a whole step solved by its active set.
   static MpccSolver& homotopy(std::unique_ptr<MpccSolver>& solver, const HomotopyOptions& options) {
@@ -296,6 +364,8 @@ class FesdIntegrator::Run {
     DiscretizationOptions discretization = options_.discretization;
     discretization.switch_detection = discretization.switch_detection && kind != kFixedSteps;
     if (kind == kRefined) discretization.num_elements *= 2;
+    discretization.interval_elements.clear();  // a step is one interval
+    discretization.gap_guards.clear();
     Part part{
         problem.horizon, discretization.num_elements, discretize(problem, discretization), {}};
     return parts_.emplace(key, std::move(part)).first->second;
@@ -317,11 +387,20 @@ class FesdIntegrator::Run {
   /// The sensitivities' own: the stepping's factorisations (and so its path) stay as without.
   SquareNewton sensitivity_newton_;
   Eigen::VectorXd state_;
-  Eigen::VectorXd previous_control_;  ///< of the last part in the trajectory
+  int nu_;
+  Eigen::VectorXd previous_control_;  ///< of the last part in the trajectory (or the arrival)
+  Trajectory arrival_;                ///< restart's: how a restarted run's state was reached
+  /// A trajectory close to the one sought (a plan being verified): its forces predict each
+  /// part's active sets; nullptr: predicted from the start.
+  const Trajectory* reference_ = nullptr;
+
+ public:
+  void setReference(const Trajectory* reference) { reference_ = reference; }
   /// By (tenths, middles, kind); a map's references stay valid as parts are added.
   std::map<std::tuple<int, int, Kind>, Part> parts_;
   bool split_ = false;  ///< the current step was split
-  int step_ = 0;        ///< the step being solved
+  int step_ = 0;        ///< the step being solved, counted from the run's (re)start
+  int first_step_ = 0;  ///< the user step the run (re)started at
   std::string failure_;
   SensitivityChain sensitivities_;
 };
@@ -380,6 +459,50 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
   result.totals.wall_seconds = run.wallSeconds();
   result.totals.cpu_seconds = run.cpuSeconds();
   return std::move(result);  // run.result: no copy of the trajectory and sensitivities
+}
+
+ShootingResult FesdIntegrator::shoot(const std::vector<Eigen::VectorXd>& starts, double step_length,
+                                     const std::vector<Eigen::VectorXd>& controls,
+                                     const Trajectory* reference) {
+  const int steps = static_cast<int>(starts.size());
+  if (steps < 1) throw std::invalid_argument("FesdIntegrator::shoot: no start state");
+  if (!(controls.size() == starts.size() || (controls.empty() && model_->controlSize() == 0))) {
+    throw std::invalid_argument("FesdIntegrator::shoot: give one control per start state");
+  }
+  ShootingResult shooting;
+  shooting.status = SolveStatus::kSuccess;
+  Run run(*this, starts[0], step_length, 1);
+  run.setReference(reference);
+  for (int k = 0; k < steps; ++k) {
+    Trajectory arrival =
+        k > 0 && reference != nullptr ? lastElementOf(*reference, k - 1) : Trajectory();
+    const bool arrived = !arrival.elements.empty() && !controls.empty();
+    run.restart(starts[k], k, std::move(arrival), arrived ? controls[k - 1] : Eigen::VectorXd());
+    const bool ok = run.step(k, controls.empty() ? Eigen::VectorXd() : controls[k]);
+    Trajectory piece = std::move(run.result.trajectory);
+    classifySwitches(piece, run.discretization().activeAt(starts[k], options_.activity_tolerance),
+                     options_.activity_tolerance, options_.penetration_tolerance);
+    shooting.steps.push_back(std::move(piece));
+    if (options_.sensitivities) {
+      const SimulationSensitivities derivatives = run.sensitivities();
+      shooting.why_undefined.push_back(derivatives.why_undefined);
+      shooting.transitions.push_back(
+          derivatives.defined_steps == 1
+              ? Eigen::MatrixXd(derivatives.states[0].leftCols(starts[k].size()))
+              : Eigen::MatrixXd());
+    }
+    if (!ok) {
+      shooting.status = run.result.status;
+      shooting.message = "step " + std::to_string(k) + " of " + std::to_string(steps) +
+                         " did not converge: " + run.failure();
+      break;
+    }
+  }
+  shooting.totals = run.result.totals;
+  shooting.totals.status = shooting.status;
+  shooting.totals.wall_seconds = run.wallSeconds();
+  shooting.totals.cpu_seconds = run.cpuSeconds();
+  return shooting;
 }
 
 }  // namespace fesd

@@ -26,6 +26,15 @@ HomotopyOptions guessHomotopy(const OcpOptions& options) {
   return homotopy;
 }
 
+/// From a plan: one polishing attempt of its active set (when it does not fit, flipping its most
+/// ambiguous pairs rarely did: three failed attempts of 100 iterations each before the homotopy
+/// on the closed loop's replans).
+HomotopyOptions planHomotopy(const OcpOptions& options) {
+  HomotopyOptions homotopy = guessHomotopy(options);
+  homotopy.polish_attempts = 1;
+  return homotopy;
+}
+
 }  // namespace
 
 OcpSolver::OcpSolver(OcpDefinition ocp, OcpOptions options)
@@ -34,10 +43,11 @@ OcpSolver::OcpSolver(OcpDefinition ocp, OcpOptions options)
       discretization_(discretize(ocp_, options_.discretization)),
       solver_(options_.homotopy),
       fixed_grid_solver_(fixedGridHomotopy(options_)),
-      guess_solver_(guessHomotopy(options_)) {}
+      guess_solver_(guessHomotopy(options_)),
+      plan_solver_(planHomotopy(options_)) {}
 
 void OcpSolver::setMonitor(const SolveMonitor* monitor) {
-  for (MpccSolver* solver : {&solver_, &fixed_grid_solver_, &guess_solver_}) {
+  for (MpccSolver* solver : {&solver_, &fixed_grid_solver_, &guess_solver_, &plan_solver_}) {
     solver->setMonitor(monitor);
   }
 }
@@ -153,6 +163,22 @@ OcpSolution OcpSolver::solve(const Trajectory& trajectory, const TrajectoryGuess
   from_trajectory.start = OcpStart::kTrajectory;
   return orFallback(std::move(from_trajectory), fallback, OcpStart::kGuessAfterTrajectory,
                     "from the trajectory");
+}
+
+OcpSolution OcpSolver::solveFromPlan(const Trajectory& plan, double polish_sigma, double sigma,
+                                     const TrajectoryGuess& fallback) {
+  MpccReport start;
+  start.solution = discretization_->guessFromTrajectory(plan);
+  start.polish_sigma = polish_sigma;
+  // Tight relaxations are as hard for Ipopt as the MPCC: the homotopy resumes no tighter than a
+  // warm start's (on the closed loop's replans from 1e-9 every relaxed NLP ran to Ipopt's limit).
+  OcpSolution from_plan = finish(
+      plan_solver_.solve(discretization_->nlp(), start, std::max(sigma, options_.warm_start_sigma),
+                         std::max(0.0, options_.homotopy.wall_time_budget)),
+      *discretization_);
+  from_plan.start = OcpStart::kTrajectory;
+  return orFallback(std::move(from_plan), fallback, OcpStart::kGuessAfterTrajectory,
+                    "from the plan");
 }
 
 OcpSolution OcpSolver::orFallback(OcpSolution first, const TrajectoryGuess& fallback,

@@ -18,9 +18,10 @@ namespace {
 /// that much more room: within the lazy pairs' margin, so that the pairs a plan passes are
 /// modelled from the first round.
 constexpr double kClearance = 0.05;
-/// A transit keeps out of the body it arrives at or leaves only to this fraction of the contact
-/// distance: a path that just grazes the contact circle on its way in is projected onto it
-/// (PlannedMotion), as before; one that would cross the body goes round it.
+/// A straight transit into (or out of) the body it arrives at (or leaves) in contact may cut
+/// into its contact circle down to this fraction of the contact distance: the planned motion
+/// slides it along the rim into place, which the plans keep as a contact. One that would cut
+/// deeper goes round the body, clear of it, and arrives along the line of centres.
 constexpr double kTouchedFraction = 0.8;
 
 /// Turning points of a body of radius `room` (around its centre) inside its workspace and at
@@ -39,9 +40,12 @@ std::vector<Eigen::VectorXd> inScene(const std::vector<Eigen::Vector2d>& path) {
 }
 
 /// An actuated body's path from `from` to `to` round the obstacles and the bodies at rest (`rest`:
-/// their positions meanwhile; empty for bodies that move on their own); `touched` (-1: none), the
-/// body it arrives at or leaves in contact, is kept out of to kTouchedFraction of the contact
-/// distance. Straight in space.
+/// their positions meanwhile; empty for bodies that move on their own), keeping their clearance.
+/// `touched` (-1: none), the body it arrives at or leaves in contact, only as far as
+/// kTouchedFraction of the contact distance on a straight path; a path that must go round it
+/// keeps the clearance from it too and arrives (leaves) along the line of centres: going round
+/// on the rim (the planned motion projects the pusher onto the contact circle) left plans that
+/// graze the body between stage points. Straight in space.
 std::vector<Eigen::VectorXd> transitPath(const SceneTask& task, int body,
                                          const Eigen::VectorXd& from, const Eigen::VectorXd& to,
                                          const std::vector<Eigen::VectorXd>& rest, int touched) {
@@ -55,6 +59,7 @@ std::vector<Eigen::VectorXd> transitPath(const SceneTask& task, int body,
     const double distance = (1.0 + kClearance) * (obstacle.radius + radius);
     query.keep_out.push_back({obstacle.position, distance, distance});
   }
+  const bool touches = touched >= 0 && rest[touched].size() > 0;
   for (size_t b = 0; b < scene.bodies().size(); ++b) {
     if (static_cast<int>(b) == body || rest[b].size() == 0) continue;
     const double contact = scene.bodies()[b].radius + radius;
@@ -63,7 +68,25 @@ std::vector<Eigen::VectorXd> transitPath(const SceneTask& task, int body,
     query.keep_out.push_back({rest[b], distance, (1.0 + kClearance) * contact});
   }
   query.allowed = roomFor(task, body, (1.0 + kClearance) * radius);
-  return inScene(pathAround(query));
+  std::vector<Eigen::VectorXd> path = inScene(pathAround(query));
+  if (!touches || path.size() == 2) return path;
+  // Round the touched body: clear of it, and in and out along the line of centres.
+  const Eigen::Vector2d centre = rest[touched];
+  const double contact = scene.bodies()[touched].radius + radius;
+  const auto clear_of_touched = [&](const Eigen::VectorXd& at) -> Eigen::Vector2d {
+    const Eigen::Vector2d out = Eigen::Vector2d(at) - centre;
+    if (out.norm() > (1.0 + 0.5 * kClearance) * contact || out.norm() == 0.0) return at;
+    return centre + (1.0 + kClearance) * contact * out.normalized();
+  };
+  for (KeepOut& keep_out : query.keep_out) {
+    if (keep_out.centre == centre) keep_out.distance = keep_out.corner;
+  }
+  query.from = clear_of_touched(from);
+  query.to = clear_of_touched(to);
+  path = inScene(pathAround(query));
+  if (Eigen::VectorXd(query.from) != from) path.insert(path.begin(), from);
+  if (Eigen::VectorXd(query.to) != to) path.push_back(to);
+  return path;
 }
 
 /// The turning points of a pushed body's legs from its start to `end`: round the obstacles (as

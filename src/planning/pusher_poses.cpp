@@ -47,14 +47,42 @@ std::vector<Eigen::VectorXd> candidateDirections(const Eigen::VectorXd& push_dir
 }
 
 /// How much of a displacement the placed pushers cannot produce (relative): each pushes only
-/// along its offset, so the displacement must lie in the cone of the offsets.
+/// along its offset, so the displacement must lie in the cone of the offsets, and of the normals
+/// of the walls the body ends against (`walls`: it slides along them, held by their force).
 double unpushableFraction(const std::vector<PushAssignment>& placed,
-                          const Eigen::VectorXd& displacement) {
+                          const Eigen::VectorXd& displacement,
+                          const std::vector<Eigen::VectorXd>& walls = {}) {
   if (displacement.norm() == 0.0) return 0.0;
   if (placed.empty()) return 1.0;
-  Eigen::MatrixXd G(displacement.size(), placed.size());
+  Eigen::MatrixXd G(displacement.size(), placed.size() + walls.size());
   for (size_t k = 0; k < placed.size(); ++k) G.col(k) = -placed[k].offset;
+  for (size_t k = 0; k < walls.size(); ++k) G.col(placed.size() + k) = walls[k];
   return (G * nonnegativeLeastSquares(G, displacement) - displacement).norm() / displacement.norm();
+}
+
+/// Whether a disc of `radius` at p keeps clear of the scene's walls and (with `obstacles`) its
+/// obstacles.
+bool clearOfFixed(const Scene& scene, double radius, const Eigen::VectorXd& p, bool obstacles) {
+  for (const SceneObstacle& obstacle : scene.obstacles()) {
+    if (obstacles && (p - obstacle.position).norm() < radius + obstacle.radius) return false;
+  }
+  for (const SceneWall& wall : scene.walls()) {
+    if (wall.normal.dot(p) - wall.offset < radius) return false;
+  }
+  return true;
+}
+
+/// A wall's contact surface for a disc of `radius`: touching it within rounding.
+constexpr double kTouching = 1e-9;
+
+/// The normals of the walls a disc of `radius` at p touches.
+std::vector<Eigen::VectorXd> touchedWalls(const Scene& scene, double radius,
+                                          const Eigen::VectorXd& p) {
+  std::vector<Eigen::VectorXd> normals;
+  for (const SceneWall& wall : scene.walls()) {
+    if (wall.normal.dot(p) - wall.offset - radius <= kTouching) normals.push_back(wall.normal);
+  }
+  return normals;
 }
 
 /// The fastest a body moves along unit direction d under a bound on each coordinate's speed.
@@ -83,7 +111,7 @@ bool clearEnd(const Scene& scene, int body, const Eigen::VectorXd& p,
     if (distance < radius + obstacle.radius) return false;
   }
   for (const SceneWall& wall : scene.walls()) {
-    if (wall.normal.dot(p) - wall.offset < radius) return false;
+    if (wall.normal.dot(p) - wall.offset < radius - kTouching) return false;
   }
   return true;
 }
@@ -118,6 +146,17 @@ double bisect(double reachable, double unreachable, int halvings,
     (ok(middle) ? reachable : unreachable) = middle;
   }
   return reachable;
+}
+
+/// The radius of the largest actuated body with a pair with `pushed` (0 when none).
+double largestPusher(const SceneTask& task, const std::vector<ContactPair>& pairs, int pushed) {
+  double largest = 0.0;
+  for (int b = 0; b < static_cast<int>(task.scene.bodies().size()); ++b) {
+    if (task.scene.bodies()[b].actuated && bodyPairIndex(pairs, b, pushed) >= 0) {
+      largest = std::max(largest, task.scene.bodies()[b].radius);
+    }
+  }
+  return largest;
 }
 
 }  // namespace
@@ -169,6 +208,8 @@ std::vector<PushAssignment> placePushers(const SceneTask& task,
       const bool fits =
           task.bodies[pusher].insideWorkspace(from + offset) &&
           task.bodies[pusher].insideWorkspace(to + offset) &&
+          clearOfFixed(scene, radius, from + offset, true) &&
+          clearOfFixed(scene, radius, to + offset, false) &&
           std::all_of(placed.begin(), placed.end(), [&](const PushAssignment& p) {
             return (p.offset - offset).norm() >= radius + scene.bodies()[p.pusher].radius;
           });
@@ -229,7 +270,9 @@ PushPlan::ShortPush pushableEnd(const SceneTask& task, const std::vector<Contact
     std::vector<bool> trial = busy;
     const std::vector<PushAssignment> placed = placePushers(task, pairs, pushed, start, end, trial);
     Judgement judgement;
-    judgement.placeable = unpushableFraction(placed, end - start) < kUnpushableFraction;
+    const std::vector<Eigen::VectorXd> walls =
+        touchedWalls(scene, scene.bodies()[pushed].radius, end);
+    judgement.placeable = unpushableFraction(placed, end - start, walls) < kUnpushableFraction;
     judgement.in_time = judgement.placeable && pushableInTime(task, placed, start, end);
     return judgement;
   };
@@ -248,6 +291,20 @@ PushPlan::ShortPush pushableEnd(const SceneTask& task, const std::vector<Contact
   const auto replacement = [&](const Eigen::VectorXd& end) {
     return clearEnd(scene, pushed, end, &start) && pushable(end);
   };
+  // Against a wall the body slides along it: the target moved onto the nearest wall it is
+  // within a pusher's reach of, before any other end.
+  const double radius = scene.bodies()[pushed].radius;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const SceneWall& wall : scene.walls()) {
+    const double gap = wall.normal.dot(target) - wall.offset - radius;
+    const Eigen::VectorXd end = target - gap * wall.normal;
+    if (gap >= 0.0 && gap < nearest && gap <= 2.0 * largestPusher(task, pairs, pushed) &&
+        replacement(end)) {
+      nearest = gap;
+      short_push.end = end;
+    }
+  }
+  if (std::isfinite(nearest)) return short_push;
   const double length = (target - start).norm();
   const std::vector<Eigen::VectorXd> directions = searchDirections(scene.dimension());
   const double spacing = length / kSearchRings;

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "fesd_trajopt/discretization/butcher_tableau.h"
+#include "fesd_trajopt/discretization/refined_trajectory.h"
 #include "fesd_trajopt/planning/push_plan.h"
 #include "fesd_trajopt/planning/robot_guess.h"
 #include "fesd_trajopt/scene/lazy_pairs.h"
@@ -100,7 +102,7 @@ void chooseFirstPairs(const SceneTask& task, const std::vector<ContactPair>& can
   if (chosen.size() != candidates.size()) {
     const int samples = 16 * task.num_intervals;
     const PairSelection selection = pairsTheGuessNeeds(task.scene, task.horizon, candidates, guess,
-                                                       options.pair_margin, samples);
+                                                       options.first_round_margin, samples);
     chosen = selection.modelled;
     reasons = selection.reasons;
   }
@@ -114,13 +116,23 @@ void chooseFirstPairs(const SceneTask& task, const std::vector<ContactPair>& can
   }
 }
 
-/// Each body's distance from its target at the end; a successful outcome that misses one by more
-/// than targetTolerance is kTargetNotReached, its message naming every target missed.
+/// The elements of each control interval of the task on the options' grid.
+std::vector<int> intervalElements(const SceneTask& task, const OcpOptions& options) {
+  const DiscretizationOptions& grid = options.discretization;
+  return grid.interval_elements.empty() ? std::vector<int>(task.num_intervals, grid.num_elements)
+                                        : grid.interval_elements;
+}
+
+int totalElements(const SceneTask& task, const OcpOptions& options) {
+  int total = 0;
+  for (int count : intervalElements(task, options)) total += count;
+  return total;
+}
+
 /// Why an NLP is refused before Ipopt starts (its estimated memory beyond the limit), or "".
 std::string nlpTooLarge(const NlpAssembly& nlp, size_t modelled_pairs, const SceneTask& task,
                         const SceneSolveOptions& options, const TaskLimits& limits) {
-  const double mib =
-      estimatedSolverMib(nlp, task.num_intervals * options.ocp.discretization.num_elements);
+  const double mib = estimatedSolverMib(nlp, totalElements(task, options.ocp));
   if (mib <= limits.max_solver_mib) return "";
   std::ostringstream message;
   message << "the NLP is too large to solve here: about " << static_cast<long>(mib)
@@ -188,7 +200,9 @@ void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const FirstGuess
 
 /// Every pair in reach (modelled or checked) measured along the outcome's trajectory, between
 /// element boundaries too. After a successful round, the checked pairs that came within the
-/// margin become modelled for the next round (named in `rounds_note`): true when there is one.
+/// margin become modelled for the next round (named in `rounds_note`); after a failed one those
+/// it passes through, so that no plan through a body or wall is answered without a round that
+/// models the pair: true when there is one.
 bool measureGaps(const SceneTask& task, const SceneSolveOptions& options, int round,
                  SceneOutcome& outcome, std::string& rounds_note) {
   std::vector<ContactPair> modelled, checked;
@@ -211,8 +225,10 @@ bool measureGaps(const SceneTask& task, const SceneSolveOptions& options, int ro
     decision.min_distance = checked_gaps[c++];
     std::ostringstream reason;
     reason.precision(3);
-    if (outcome.status == SolveStatus::kSuccess &&
-        withinMargin(task.scene, decision.pair, decision.min_distance, options.pair_margin)) {
+    const bool near =
+        withinMargin(task.scene, decision.pair, decision.min_distance, options.pair_margin);
+    if ((outcome.status == SolveStatus::kSuccess && near) ||
+        (!interrupted(outcome.status) && decision.min_distance < 0.0)) {
       reason << "modelled from round " << round + 1 << ": came within " << decision.min_distance
              << " in round " << round;
       decision.modelled = true;
@@ -241,6 +257,73 @@ double tightestRelaxation(const MpccReport& report, double fallback) {
   return sigma;
 }
 
+/// Adds `held` to `all` unless it is there.
+void addHeld(const PairInterval& held, std::vector<PairInterval>& all) {
+  if (std::find(all.begin(), all.end(), held) == all.end()) all.push_back(held);
+}
+
+/// Holds the grazes: a pair and interval not held yet along its elements, and each graze's
+/// deepest point exactly (`points`: a held graze that still cuts in between the guards); false
+/// when there is none.
+bool holdGrazes(const std::vector<Graze>& grazes, std::vector<PairInterval>& held,
+                std::vector<Graze>& points) {
+  for (const Graze& graze : grazes) {
+    addHeld({graze.pair, graze.interval}, held);
+    points.push_back(graze);
+  }
+  return !grazes.empty();
+}
+
+/// Where a held graze's gap is kept in each element of its interval: three points in every gap
+/// between consecutive stage nodes (and the start), a quarter, a half and three quarters in.
+std::vector<double> guardFractions(const Eigen::VectorXd& nodes) {
+  std::vector<double> fractions;
+  double previous = 0.0;
+  for (int i = 0; i < nodes.size(); ++i) {
+    for (double part : {0.25, 0.5, 0.75})
+      fractions.push_back(previous + part * (nodes(i) - previous));
+    previous = nodes(i);
+  }
+  return fractions;
+}
+
+/// The gap guards of the held grazes and of the points (elements of this grid) whose pairs the
+/// part models, on the grid of `grid`.
+std::vector<GapGuard> gapGuards(const SceneTask& task, const MovingPart& part,
+                                const std::vector<PairInterval>& held,
+                                const std::vector<Graze>& points,
+                                const DiscretizationOptions& grid) {
+  std::vector<GapGuard> guards;
+  const auto constraintOf = [&](const ContactPair& pair) {
+    const auto found = std::find(part.modelled_in_task.begin(), part.modelled_in_task.end(), pair);
+    return found == part.modelled_in_task.end()
+               ? -1
+               : static_cast<int>(found - part.modelled_in_task.begin());
+  };
+  for (const Graze& point : points) {
+    const int constraint = constraintOf(point.pair);
+    if (constraint >= 0 && point.fraction > 0.0 && point.fraction < 1.0) {
+      guards.push_back({point.element, constraint, point.fraction});
+    }
+  }
+  if (held.empty()) return guards;
+  std::vector<int> first_element{0};
+  OcpOptions options;
+  options.discretization = grid;
+  for (int count : intervalElements(task, options)) {
+    first_element.push_back(first_element.back() + count);
+  }
+  const std::vector<double> fractions = guardFractions(makeTableau(grid.family, grid.num_stages).c);
+  for (const PairInterval& h : held) {
+    const int constraint = constraintOf(h.pair);
+    if (constraint < 0 || h.interval >= task.num_intervals) continue;
+    for (int e = first_element[h.interval]; e < first_element[h.interval + 1]; ++e) {
+      for (double fraction : fractions) guards.push_back({e, constraint, fraction});
+    }
+  }
+  return guards;
+}
+
 }  // namespace
 
 std::string warmStartRefusal(const SceneOutcome& previous, const SceneOutcome& now) {
@@ -265,21 +348,51 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
   // A soft target out of the pushers' reach: the OCP aims at the nearest end the plan can push
   // to (a reachable task, solved as fast as one), and the answer is judged by the real target.
   const SceneTask aimed = reachableTask(task, first_guess);
-  chooseFirstPairs(aimed, candidates, first_guess.guess, options, outcome);
-  Trajectory previous_round;
-  std::vector<ContactPair> previous_pairs;
+  const SceneOutcome* refine = options.refine;
+  // The plan the next round starts from, in the full scene, with the pairs of its multipliers.
+  Trajectory from_plan;
+  std::vector<ContactPair> from_pairs;
+  double from_polish_sigma = 0.0, from_sigma = options.ocp.guess_sigma;
+  outcome.held_grazes = options.held_grazes;
+  if (refine != nullptr) {
+    outcome.decisions = refine->decisions;
+    from_plan = refinedTrajectory(
+        refine->trajectory, intervalElements(task, options.ocp),
+        makeTableau(options.ocp.discretization.family, options.ocp.discretization.num_stages).c);
+    from_pairs = refine->modelled;
+    from_polish_sigma = refine->report.polish_sigma;
+    from_sigma = tightestRelaxation(refine->report, options.ocp.guess_sigma);
+    for (const PairInterval& held : refine->held_grazes) addHeld(held, outcome.held_grazes);
+  } else {
+    chooseFirstPairs(aimed, candidates, first_guess.guess, options, outcome);
+  }
+  if (options.previous != nullptr) {
+    // A replan holds what the last plan held, so that its NLP can be the same.
+    for (const PairInterval& held : options.previous->held_grazes) {
+      addHeld(held, outcome.held_grazes);
+    }
+    if (options.previous->structure.interval_elements == intervalElements(task, options.ocp)) {
+      outcome.guard_points = options.previous->guard_points;
+    }
+  }
   std::string rounds_note;
+  bool pairs_added = false;  // the round before added pairs (a lazy round follows)
   for (int round = 1;; ++round) {
     const MovingPart part = movingPartOf(aimed, outcome);
-    const OcpDefinition ocp = buildOcp(part.task, part.modelled);
     OcpOptions ocp_options = options.ocp;
+    ocp_options.discretization.gap_guards = gapGuards(
+        task, part, outcome.held_grazes, outcome.guard_points, ocp_options.discretization);
+    const OcpDefinition ocp = buildOcp(part.task, part.modelled);
     ocp_options.homotopy.wall_time_budget =
         std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
-    if (round > 1 && !task.scene.hasRobot()) {
+    if (pairs_added && !task.scene.hasRobot()) {
       // The previous round's solution is nearly this round's (the new pairs start separated):
       // its homotopy resumes at the tightest relaxation that round reached, not from guess_sigma.
       // Same optima on the planning sweep, in less time; a robot's lazy round starts over: on
       // the arm push resuming ended in another local optimum (objective 2.0e-4 against 1.4e-4).
+      // Polishing the round before's active set first cost 100 iterations more on 4 of the 16
+      // posts scenes at the node's grid and converged on none: the new pairs are the ones it
+      // passed too near.
       ocp_options.guess_sigma = tightestRelaxation(outcome.report, ocp_options.guess_sigma);
     }
     OcpSolver solver(ocp, ocp_options);
@@ -301,37 +414,87 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     outcome.structure = planStructure(aimed, outcome, options.ocp.discretization);
     const TrajectoryGuess guess = partGuess(aimed, part, first_guess.guess, candidates);
     OcpSolution solution;
-    if (round == 1) {
-      if (options.previous != nullptr) {
-        outcome.cold_start_reason = warmStartRefusal(*options.previous, outcome);
+    if (pairs_added) {
+      solution = solver.solve(partTrajectory(aimed, part, from_plan, from_pairs), guess);
+    } else if (!from_plan.elements.empty()) {
+      solution = solver.solveFromPlan(partTrajectory(aimed, part, from_plan, from_pairs),
+                                      from_polish_sigma, from_sigma, guess);
+      if (round == 1) {
+        outcome.refined_plan = solution.start == OcpStart::kTrajectory;
+        outcome.plan_source = "coarser rung's plan";
+        if (!outcome.refined_plan) {
+          rounds_note += "; from the coarser rung's plan it failed: from the push plan";
+        }
       }
-      const bool warm = options.previous != nullptr && outcome.cold_start_reason.empty();
-      OcpSolution previous;
-      if (warm) previous.report = options.previous->report;
-      solution = warm ? solver.solve(previous, guess) : solver.solve(guess);
-      if (warm && solution.start != OcpStart::kPrevious) {
-        outcome.cold_start_reason = "the warm solve failed";
+    } else if (options.previous != nullptr) {
+      const SceneOutcome& previous_outcome = *options.previous;
+      outcome.cold_start_reason = warmStartRefusal(previous_outcome, outcome);
+      const int done = solvedItsNlp(previous_outcome.status) && previous_outcome.solved()
+                           ? intervalsDone(previous_outcome.structure, outcome.structure)
+                           : -1;
+      if (outcome.cold_start_reason.empty()) {
+        OcpSolution previous;
+        previous.report = previous_outcome.report;
+        solution = solver.solve(previous, guess);
+        if (solution.start != OcpStart::kPrevious) {
+          outcome.cold_start_reason = "the warm solve failed";
+        }
+        outcome.warm_started = solution.start == OcpStart::kPrevious;
+      } else if (done >= 0) {
+        // A replan after `done` intervals of the plan were executed: from the rest of it.
+        const Trajectory rest = refinedTrajectory(
+            laterPart(previous_outcome.trajectory, done), intervalElements(task, options.ocp),
+            makeTableau(options.ocp.discretization.family, options.ocp.discretization.num_stages)
+                .c);
+        solution = solver.solveFromPlan(
+            partTrajectory(aimed, part, rest, previous_outcome.modelled),
+            previous_outcome.report.polish_sigma,
+            tightestRelaxation(previous_outcome.report, options.ocp.guess_sigma), guess);
+        outcome.warm_started = solution.start == OcpStart::kTrajectory;
+        outcome.plan_source = "previous plan after " + std::to_string(done) + " interval(s)";
+        outcome.cold_start_reason =
+            outcome.warm_started ? "" : "the solve from the previous plan failed";
+      } else {
+        solution = solver.solve(guess);
       }
-      outcome.warm_started = solution.start == OcpStart::kPrevious;
       outcome.guess_residual = solution.guess_residual;
     } else {
-      solution = solver.solve(partTrajectory(aimed, part, previous_round, previous_pairs), guess);
+      solution = solver.solve(guess);
+      outcome.guess_residual = solution.guess_residual;
+    }
+    if (round > 1) {
       solution.report.history.insert(solution.report.history.begin(),
                                      outcome.report.history.begin(), outcome.report.history.end());
       solution.report.addEffort(outcome.report);
     }
     outcome.status = solution.status;
     outcome.message = solution.message;
-    outcome.start = solution.start;
+    outcome.start = round == 1 ? solution.start : outcome.start;
     outcome.trajectory = fullSceneTrajectory(aimed, part, solution.trajectory);
     outcome.report = solution.report;
-    outcome.pair_rounds = round;
+    outcome.pair_rounds = round - outcome.graze_rounds;
     outcome.modelled = part.modelled_in_task;
-    previous_round = outcome.trajectory;
-    previous_pairs = part.modelled_in_task;
-    if (!measureGaps(aimed, options, round, outcome, rounds_note)) break;
+    // The next round starts from this plan (a graze round: its active set first).
+    from_plan = outcome.trajectory;
+    from_pairs = part.modelled_in_task;
+    from_polish_sigma = solution.report.polish_sigma;
+    from_sigma = tightestRelaxation(outcome.report, options.ocp.guess_sigma);
+    pairs_added = measureGaps(aimed, options, round - outcome.graze_rounds, outcome, rounds_note);
+    if (pairs_added) continue;
+    if (outcome.status != SolveStatus::kSuccess) break;
+    outcome.grazes = planGrazes(aimed, outcome.trajectory, outcome.modelled, options.graze_depth);
+    if (outcome.graze_rounds >= options.max_graze_rounds ||
+        !holdGrazes(outcome.grazes, outcome.held_grazes, outcome.guard_points)) {
+      break;
+    }
+    ++outcome.graze_rounds;
+    rounds_note += "; " + describeGrazes(task.scene, outcome.grazes) + ": held in a new round";
   }
   outcome.message += rounds_note;
+  if (!outcome.grazes.empty()) {
+    outcome.message += "; the plan cuts into a body between stage points: " +
+                       describeGrazes(task.scene, outcome.grazes);
+  }
   if (!outcome.trajectory.states.empty()) {
     outcome.boundary_gap = smallestBoundaryGap(task.scene, outcome.modelled, outcome.trajectory);
   }
@@ -340,10 +503,9 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     const SimulationOptions fine =
         verificationOptions(options.verification, options.ocp,
                             options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
-    const Verification verification = verifyOutcome(task, outcome, fine, options.pair_margin);
+    outcome.verification = verifyPlan(task, outcome.trajectory, outcome.decisions, fine,
+                                      options.pair_margin, options.graze_depth);
     outcome.verified = true;
-    outcome.verification_error = verification.error;
-    outcome.verification_gap = verification.gap;
   }
   return outcome;
 }
@@ -365,58 +527,15 @@ SimulationOptions verificationOptions(const DiscretizationOptions& configured,
   // The reference must be finer than the solve, or its own error is what gets measured (the
   // configured n_s = 3, N_FE = 6 showed 1.4e-6 against n_s = 4 solves of any N_FE).
   fine.discretization.num_stages = std::max(fine.discretization.num_stages, solved.num_stages);
-  fine.discretization.num_elements =
-      std::max(fine.discretization.num_elements, 2 * solved.num_elements);
+  const int most =
+      solved.interval_elements.empty()
+          ? solved.num_elements
+          : *std::max_element(solved.interval_elements.begin(), solved.interval_elements.end());
+  fine.discretization.num_elements = std::max(fine.discretization.num_elements, 2 * most);
   // 0 when the solve used it all: the re-simulation times out and its error is infinite.
   fine.wall_time_budget = std::max(0.0, remaining_budget);
+  fine.refine_by_homotopy = false;
   return fine;
-}
-
-Verification verifyOutcome(const SceneTask& task, const SceneOutcome& outcome,
-                           const SimulationOptions& fine, double margin) {
-  Stopwatch stopwatch;
-  std::vector<PairDecision> decisions = outcome.decisions;
-  Verification verification;
-  for (bool grew = true; grew;) {
-    const MovingPart part = movingPart(task, decisions);
-    SimulationOptions remaining = fine;
-    remaining.wall_time_budget = std::max(0.0, fine.wall_time_budget - stopwatch.wallSeconds());
-    const SimulationResult result =
-        resimulate(buildOcp(part.task, part.modelled), outcome.trajectory.controls, remaining);
-    verification.status = result.status;
-    verification.trajectory = fullSceneTrajectory(task, part, result.trajectory);
-    verification.modelled_pairs = static_cast<int>(part.modelled.size());
-    if (result.status != SolveStatus::kSuccess) return verification;
-    // No pair left to check: the dense path (~10 % of the rest) is not needed.
-    if (std::none_of(decisions.begin(), decisions.end(),
-                     [](const PairDecision& d) { return d.checked; })) {
-      break;
-    }
-    grew = false;
-    std::vector<ContactPair> checked;
-    for (const PairDecision& decision : decisions) {
-      if (decision.checked) checked.push_back(decision.pair);
-    }
-    const std::vector<double> gaps =
-        smallestGaps(task.scene, checked, densePath(verification.trajectory));
-    size_t k = 0;
-    for (PairDecision& decision : decisions) {
-      if (!decision.checked) continue;
-      if (withinMargin(task.scene, decision.pair, gaps[k++], margin)) {
-        decision.modelled = true;
-        decision.checked = false;
-        grew = true;
-      }
-    }
-  }
-  verification.error =
-      (verification.trajectory.finalState() - outcome.trajectory.finalState()).norm();
-  std::vector<ContactPair> in_reach;
-  for (const PairDecision& decision : outcome.decisions) {
-    if (decision.modelled || decision.checked) in_reach.push_back(decision.pair);
-  }
-  verification.gap = smallestBoundaryGap(task.scene, in_reach, verification.trajectory);
-  return verification;
 }
 
 SceneOutcome simulateSceneTask(SceneTask task, const std::vector<Eigen::VectorXd>& controls,

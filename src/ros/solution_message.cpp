@@ -125,15 +125,46 @@ fesd_trajopt::SwitchEvent switchMessage(const fesd::SwitchEvent& event, const st
   return message;
 }
 
-void fillAccuracy(bool verified, double verification_error,
-                  const std::vector<fesd::AccuracyRung>& rungs, fesd_trajopt::Solution& solution) {
-  solution.verified = verified;
-  if (verified) solution.verification_error = verification_error;
-  for (const fesd::AccuracyRung& rung : rungs) {
+void fillAccuracy(const fesd::Scene& scene, const fesd::SceneOutcome& outcome,
+                  double target_accuracy, fesd_trajopt::Solution& solution) {
+  const fesd::Verification& verification = outcome.verification;
+  solution.verified = outcome.verified;
+  if (outcome.verified) {
+    solution.verification_error = verification.error;
+    solution.open_loop_error = verification.open_loop_error;
+    solution.open_loop_gain = verification.open_loop_gain;
+    solution.needs_feedback = target_accuracy > 0.0 && verification.error <= target_accuracy &&
+                              !(verification.open_loop_error <= target_accuracy);
+    for (const fesd::Graze& graze : verification.grazes) {
+      fesd_trajopt::Graze message;
+      std::tie(message.pair.first, message.pair.second) = pairNames(scene, graze.pair);
+      message.pair.min_distance = graze.depth;
+      message.interval = graze.interval;
+      message.time = graze.time;
+      message.depth = graze.depth;
+      message.touched = graze.touched;
+      solution.grazes.push_back(message);
+    }
+  } else {
+    solution.open_loop_error = solution.open_loop_gain = std::numeric_limits<double>::quiet_NaN();
+  }
+  for (const fesd::AccuracyRung& rung : outcome.refinements) {
     fesd_trajopt::Refinement refinement;
     refinement.num_stages = rung.stages;
-    refinement.num_elements = rung.elements;
+    refinement.interval_elements.assign(rung.interval_elements.begin(),
+                                        rung.interval_elements.end());
+    refinement.num_elements =
+        rung.interval_elements.empty()
+            ? 0
+            : *std::max_element(rung.interval_elements.begin(), rung.interval_elements.end());
+    refinement.change = rung.change;
+    refinement.reason = rung.reason;
+    refinement.refined_intervals.assign(rung.refined_intervals.begin(),
+                                        rung.refined_intervals.end());
+    refinement.error_before = rung.error_before;
     refinement.verification_error = rung.verification_error;
+    refinement.grazes = rung.grazes;
+    refinement.from_previous_plan = rung.from_previous_plan;
     refinement.wall_time = rung.wall_seconds;
     refinement.status = statusCode(rung.status);
     solution.refinements.push_back(refinement);

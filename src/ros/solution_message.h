@@ -51,9 +51,10 @@ void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& repo
 fesd_trajopt::SwitchEvent switchMessage(const fesd::SwitchEvent& event, const std::string& first,
                                         const std::string& second);
 
-/// The verification and the accuracy ladder's rungs of a plan.
-void fillAccuracy(bool verified, double verification_error,
-                  const std::vector<fesd::AccuracyRung>& rungs, fesd_trajopt::Solution& solution);
+/// The verification (interval errors, open loop, grazes) and the accuracy ladder's rungs of a
+/// plan; needs_feedback when its open-loop error exceeds `target_accuracy` (> 0).
+void fillAccuracy(const fesd::Scene& scene, const fesd::SceneOutcome& outcome,
+                  double target_accuracy, fesd_trajopt::Solution& solution);
 
 /// rviz colour of a body: actuated blue, passive orange.
 std_msgs::ColorRGBA bodyColor(bool actuated, double alpha);

@@ -5,10 +5,11 @@
 #include <cmath>
 #include <exception>
 #include <optional>
+#include <sstream>
 
 #include "builtin_systems.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
-#include "fesd_trajopt/planning/scene_solver.h"
+#include "fesd_trajopt/planning/accuracy_ladder.h"
 #include "fesd_trajopt/solver/heap_policy.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 #include "scene_request.h"
@@ -291,6 +292,12 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
     previous = last_solution_;
   }
   options.previous = previous.get();
+  if (previous && fesd::solvedItsNlp(previous->status) && !request.has_num_elements &&
+      !request.has_num_stages) {
+    // A replan starts on the grid the last plan needed (of its intervals still to come).
+    fesd::startOnPreviousRung(previous->structure, task.num_intervals, task.horizon,
+                              options.ocp.discretization);
+  }
   const double accuracy = targetAccuracy(request, config_);
   const fesd::SceneOutcome outcome =
       accuracy > 0.0 ? fesd::solveToAccuracy(task, config_.limits, options, accuracy)
@@ -308,20 +315,29 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
                   << outcome.checkedPairs() << " checked / "
                   << outcome.decisions.size() - outcome.modelledPairs() - outcome.checkedPairs()
                   << " pruned pairs in " << outcome.pair_rounds << " round(s), "
-                  << task.num_intervals << " intervals x " << outcome.structure.elements
+                  << task.num_intervals << " intervals x " << outcome.structure.largestElements()
                   << " elements, n_s = " << outcome.structure.stages);
   fesd_trajopt::Solution& solution = answer.solution;
   solution = sceneSolution(task, outcome);
   solution.status = statusCode(outcome.status);
   solution.message = outcome.message;  // with the warning on unresolved switches
   solution.statistics.start =
-      fesd::startName(outcome.start, robot ? "robot guess" : "push plan", "previous round");
+      fesd::startName(outcome.start, robot ? "robot guess" : "push plan", outcome.plan_source);
   solution.statistics.pair_rounds = outcome.pair_rounds;
   solution.statistics.warm_started = outcome.warm_started;
   solution.statistics.nlp_variables = outcome.sizes.variables;
   solution.statistics.nlp_constraints = outcome.sizes.constraints;
   solution.statistics.complementarity_constraints = outcome.sizes.complementarities;
-  fillAccuracy(outcome.verified, outcome.verification_error, outcome.refinements, solution);
+  fillAccuracy(task.scene, outcome, accuracy, solution);
+  if (solution.needs_feedback) {
+    std::ostringstream feedback;
+    feedback.precision(3);
+    feedback << "; executed open loop the plan ends " << solution.open_loop_error
+             << " from its planned end (a deviation grows up to " << solution.open_loop_gain
+             << "-fold by the end): execute it with feedback, replanning from the measured state "
+                "with warm_start";
+    solution.message += feedback.str();
+  }
   solution.header.stamp = ros::Time::now();
   solution.header.frame_id = config_.frame_id;
   solution.statistics.wall_time = stopwatch.wallSeconds();

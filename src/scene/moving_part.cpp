@@ -26,19 +26,6 @@ Eigen::VectorXd fullState(const SceneTask& full, const MovingPart& part,
   return state;
 }
 
-/// A state of the moving part: the joints and its bodies' positions in a full scene state.
-Eigen::VectorXd partState(const SceneTask& full, const MovingPart& part,
-                          const Eigen::VectorXd& state) {
-  const int dim = full.scene.dimension();
-  Eigen::VectorXd moving(part.task.scene.stateSize());
-  moving.head(full.scene.numJoints()) = state.head(full.scene.numJoints());
-  for (size_t i = 0; i < part.bodies.size(); ++i) {
-    moving.segment(part.task.scene.stateIndex(static_cast<int>(i)), dim) =
-        state.segment(full.scene.stateIndex(part.bodies[i]), dim);
-  }
-  return moving;
-}
-
 /// Per state component of the part, its index in the full scene's state.
 std::vector<int> fullStateIndices(const SceneTask& full, const MovingPart& part) {
   const int dim = full.scene.dimension();
@@ -70,6 +57,18 @@ Eigen::MatrixXd pairRows(const std::vector<int>& sources, const Eigen::MatrixXd&
 }
 
 }  // namespace
+
+Eigen::VectorXd partState(const SceneTask& full, const MovingPart& part,
+                          const Eigen::VectorXd& state) {
+  const int dim = full.scene.dimension();
+  Eigen::VectorXd moving(part.task.scene.stateSize());
+  moving.head(full.scene.numJoints()) = state.head(full.scene.numJoints());
+  for (size_t i = 0; i < part.bodies.size(); ++i) {
+    moving.segment(part.task.scene.stateIndex(static_cast<int>(i)), dim) =
+        state.segment(full.scene.stateIndex(part.bodies[i]), dim);
+  }
+  return moving;
+}
 
 MovingPart movingPart(const SceneTask& task, const std::vector<PairDecision>& decisions) {
   std::vector<ContactPair> modelled;

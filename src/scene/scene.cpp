@@ -54,6 +54,14 @@ Eigen::VectorXd Scene::initialState() const {
   return x;
 }
 
+void Scene::setInitialState(const Eigen::VectorXd& x) {
+  if (x.size() != stateSize()) throw std::invalid_argument("Scene: a state of the wrong size");
+  q0_ = x.head(numJoints());
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    bodies_[b].position = x.segment(stateIndex(static_cast<int>(b)), dimension_);
+  }
+}
+
 std::vector<CollisionBody> Scene::collisionBodies() const {
   std::vector<CollisionBody> result;
   for (int b = 0; b < static_cast<int>(bodies_.size()); ++b) {

@@ -356,7 +356,8 @@ std::string infeasibility(const SceneTask& task) {
     const int first = task.scene.freeBodyCollisionBodies(static_cast<int>(b))[0];
     const Box box = reachableBox(task, static_cast<int>(b), Eigen::Vector3d::Zero(), reach[first]);
     const double miss = boxDistance(box, Box{t.target, t.target});
-    if (miss > 0.0) {
+    // Within its tolerance a target counts as met (a replan from where a push nearly ended).
+    if (miss > targetTolerance(t.target_weight)) {
       return who + " cannot reach its target within the horizon: it stays at least " +
              formatNumber(miss) + " away" +
              (reach[first] > 0.0 ? "" : " (nothing that moves can push it)");

@@ -1,6 +1,7 @@
 #include "fesd_trajopt/scene/warm_start.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <utility>
 
@@ -31,10 +32,18 @@ PlanStructure planStructure(std::vector<std::string> moving_bodies,
   structure.modelled_pairs = std::move(modelled_pairs);
   structure.horizon = horizon;
   structure.intervals = intervals;
-  structure.elements = discretization.num_elements;
+  structure.interval_elements = discretization.interval_elements.empty()
+                                    ? std::vector<int>(intervals, discretization.num_elements)
+                                    : discretization.interval_elements;
   structure.stages = discretization.num_stages;
   structure.switch_detection = discretization.switch_detection;
   return structure;
+}
+
+int PlanStructure::largestElements() const {
+  return interval_elements.empty()
+             ? 0
+             : *std::max_element(interval_elements.begin(), interval_elements.end());
 }
 
 std::string movingBodyName(const SceneBody& body) {
@@ -56,10 +65,16 @@ std::string warmStartMismatch(const PlanStructure& previous, const PlanStructure
   if (previous.horizon != now.horizon) {
     return difference("the horizons", previous.horizon, now.horizon);
   }
-  if (previous.intervals != now.intervals || previous.elements != now.elements ||
+  if (previous.intervals != now.intervals || previous.interval_elements != now.interval_elements ||
       previous.stages != now.stages || previous.switch_detection != now.switch_detection) {
     const auto grid = [](const PlanStructure& s) {
-      return std::to_string(s.intervals) + " intervals x " + std::to_string(s.elements) +
+      const auto [fewest, most] =
+          std::minmax_element(s.interval_elements.begin(), s.interval_elements.end());
+      const std::string elements = s.interval_elements.empty() ? "0"
+                                   : *fewest == *most
+                                       ? std::to_string(*most)
+                                       : std::to_string(*fewest) + "-" + std::to_string(*most);
+      return std::to_string(s.intervals) + " intervals x " + elements +
              " elements, n_s = " + std::to_string(s.stages) +
              (s.switch_detection ? ", FESD" : ", standard");
     };
@@ -86,6 +101,22 @@ std::string warmStartRefusal(bool solved, int point_size, const NlpSizes& previo
   return "";
 }
 
+int intervalsDone(const PlanStructure& previous, const PlanStructure& now) {
+  const int done = previous.intervals - now.intervals;
+  if (done < 0 || now.intervals < 1 || previous.stages != now.stages ||
+      previous.switch_detection != now.switch_detection ||
+      static_cast<int>(previous.interval_elements.size()) != previous.intervals ||
+      static_cast<int>(now.interval_elements.size()) != now.intervals) {
+    return -1;
+  }
+  const double length = previous.horizon / previous.intervals;
+  if (std::fabs(now.horizon / now.intervals - length) > 1e-9 * length) return -1;
+  for (int k = 0; k < now.intervals; ++k) {
+    if (now.interval_elements[k] < previous.interval_elements[done + k]) return -1;
+  }
+  return done;
+}
+
 std::vector<bool> previousPairsAmong(const std::vector<std::string>& candidates,
                                      const std::vector<std::string>& previous) {
   std::vector<bool> chosen(candidates.size(), false);
@@ -97,12 +128,32 @@ std::vector<bool> previousPairsAmong(const std::vector<std::string>& candidates,
   return found == previous.size() ? chosen : std::vector<bool>{};
 }
 
-void startOnPreviousRung(const PlanStructure& previous, DiscretizationOptions& grid) {
-  if (previous.stages >= grid.num_stages && previous.elements >= grid.num_elements &&
-      previous.switch_detection == grid.switch_detection) {
-    grid.num_stages = previous.stages;
-    grid.num_elements = previous.elements;
+void startOnPreviousRung(const PlanStructure& previous, int intervals, double horizon,
+                         DiscretizationOptions& grid) {
+  PlanStructure now = previous;
+  now.intervals = intervals;
+  now.horizon = horizon;
+  now.stages = grid.num_stages;
+  now.switch_detection = grid.switch_detection;
+  now.interval_elements = grid.interval_elements.empty()
+                              ? std::vector<int>(intervals, grid.num_elements)
+                              : grid.interval_elements;
+  const int done = previous.intervals - intervals;
+  if (done < 0 || previous.stages < grid.num_stages ||
+      previous.switch_detection != grid.switch_detection ||
+      static_cast<int>(previous.interval_elements.size()) != previous.intervals ||
+      static_cast<int>(now.interval_elements.size()) != intervals ||
+      std::fabs(horizon / intervals - previous.horizon / previous.intervals) >
+          1e-9 * previous.horizon / previous.intervals) {
+    return;
   }
+  const std::vector<int> rest(previous.interval_elements.begin() + done,
+                              previous.interval_elements.end());
+  for (int k = 0; k < intervals; ++k) {
+    if (rest[k] < now.interval_elements[k]) return;
+  }
+  grid.num_stages = previous.stages;
+  grid.interval_elements = rest;
 }
 
 }  // namespace fesd

@@ -268,6 +268,7 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
     settings.warm_start_mu = options_.ipopt.previous_solution_mu;
     settings.warm_start_bound_push = options_.ipopt.previous_solution_bound_push;
     settings.tolerance = options_.ipopt.tolerance;
+    settings.max_iterations = options_.polish_iterations;
     // The objective the previous solution was polished with: its vanishing terms' weight.
     problem.setVanishingTermsWeight(options_.vanishing_terms_weight);
     problem.setRelaxation(previous.polish_sigma);
@@ -355,6 +356,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
         polished_set = active_set;
         IpoptSession::SolveSettings polish_settings = settings;
         polish_settings.tolerance = options_.ipopt.tolerance;
+        polish_settings.max_iterations = options_.polish_iterations;
         polish(*session_, options_, problem, point, sigma, polish_settings, 1, true, monitor_,
                report);
         if (polishedToTolerance(report, options_)) {

@@ -12,8 +12,10 @@
 #include <unistd.h>
 
 #include "fesd_trajopt/examples/manipulation_example.h"
-#include "fesd_trajopt/planning/scene_solver.h"
+#include "fesd_trajopt/planning/accuracy_ladder.h"
+#include "fesd_trajopt/planning/closed_loop.h"
 #include "support/hard_cases.h"
+#include "support/scene_tasks.h"
 
 namespace {
 
@@ -46,8 +48,9 @@ class Digest {
   std::uint64_t hash_ = 14695981039346656037ull;
 };
 
-/// Hard cases through Ipopt at every step (no active-set Newton) and the showcase scene with
-/// its verification, all with our LDL^T.
+/// Hard cases through Ipopt at every step (no active-set Newton), the showcase scene up the
+/// accuracy ladder with its verifications and a push executed with feedback, all with our
+/// LDL^T.
 std::uint64_t probeDigest() {
   Digest digest;
   fesd::SimulationOptions options = hard_cases::fesdOptions(2, 2);
@@ -64,12 +67,33 @@ std::uint64_t probeDigest() {
       disc.simulate(small.start(), small.horizon(), 14, {small.velocity()});
   digest.add(release.trajectory);
   digest.add(release.totals.iterations);
-  const fesd::SceneOutcome showcase = fesd::solveSceneTask(
-      fesd::manipulation_example::task(30), fesd::TaskLimits{}, fesd::SceneSolveOptions{});
+  // The showcase up an accuracy ladder: a rung refined from the plan before, each verified
+  // interval by interval (with sensitivities: the open-loop gain) and open loop.
+  fesd::SceneSolveOptions ladder;
+  ladder.ocp.discretization.num_elements = 3;
+  ladder.verification.num_stages = 3;
+  ladder.verification.num_elements = 6;
+  const fesd::SceneOutcome showcase =
+      fesd::solveToAccuracy(fesd::manipulation_example::task(30), fesd::TaskLimits{}, ladder, 1e-6);
   EXPECT_EQ(showcase.status, fesd::SolveStatus::kSuccess) << showcase.message;
+  EXPECT_GE(showcase.refinements.size(), 2u);
   digest.add(showcase.trajectory);
   digest.add(showcase.report.iterations);
-  digest.add(showcase.verification_error);
+  for (double error : showcase.verification.interval_errors) digest.add(error);
+  digest.add(showcase.verification.open_loop_error);
+  digest.add(showcase.verification.open_loop_gain);
+  digest.add(showcase.verification.open_loop);
+  // A push executed with feedback: replans warm from the rest of the plan before.
+  fesd::SceneTask push = fesd_test::pushAlongX();
+  push.bodies[1].target = Eigen::Vector2d(3.0, 1.0);
+  push.num_intervals = 8;
+  fesd::ClosedLoopOptions loop;
+  loop.first_accuracy = 0.0;
+  loop.replan_every = 2;
+  const fesd::ClosedLoopRun run = fesd::executeWithFeedback(push, fesd::TaskLimits{}, loop);
+  EXPECT_EQ(run.status, fesd::SolveStatus::kSuccess) << run.message;
+  digest.add(run.executed);
+  for (const fesd::Replan& replan : run.replans) digest.add(replan.iterations);
   return digest.value();
 }
 

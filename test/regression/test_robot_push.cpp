@@ -30,11 +30,11 @@ TEST_P(RobotPush, PlanarArmPushesTheDiscToItsTarget) {
   ASSERT_EQ(outcome.status, fesd::SolveStatus::kSuccess) << outcome.message;
   EXPECT_LT(outcome.target_distances[0], 1e-3);
   EXPECT_GT(outcome.boundary_gap, -1e-8);
-  EXPECT_GT(outcome.verification_gap, -1e-6);
+  EXPECT_GT(outcome.verification.gap, -1e-6);
   // With every pair in reach the plan is what its re-simulation does (measured 2.8e-5). Lazy
   // pairs end in another local optimum, a second hand sphere reaching the disc in the last
   // interval at t = 1.8999 where the re-simulation has 1.8992: measured 6.0e-2 in the joints.
-  EXPECT_LT(outcome.verification_error, GetParam() ? 0.1 : 1e-4);
+  EXPECT_LT(outcome.verification.error, GetParam() ? 0.1 : 1e-4);
   // The disc moved: some sphere pushed it.
   EXPECT_GT((outcome.trajectory.finalState().tail(2) - task.scene.bodies()[0].position).norm(),
             0.15);
@@ -44,7 +44,7 @@ TEST_P(RobotPush, PlanarArmPushesTheDiscToItsTarget) {
       "pusher %s\n",
       GetParam(), seconds, outcome.report.iterations, outcome.report.objective,
       outcome.modelled.size(), outcome.pair_rounds, outcome.target_distances[0],
-      outcome.boundary_gap, outcome.verification_error, outcome.verification_gap,
+      outcome.boundary_gap, outcome.verification.error, outcome.verification.gap,
       task.scene.robot().spheres[outcome.pusher_sphere].name.c_str());
 }
 

@@ -40,6 +40,22 @@ fesd::SceneTask pushAlongX() {
   return task;
 }
 
+fesd::SceneTask pushAlongAWall() {
+  fesd::SceneTask task = pushAlongX();
+  task.scene.bodies()[0].position = Eigen::Vector2d(-2.0, 0.3);
+  task.scene.bodies()[1].radius = 0.3;
+  task.scene.walls().push_back({"floor", Eigen::Vector2d(0.0, 1.0), -0.35});
+  return task;
+}
+
+fesd::SceneSolveOptions nodeGridOptions() {
+  fesd::SceneSolveOptions options;
+  options.ocp.discretization.num_elements = 3;
+  options.verification.num_stages = 3;
+  options.verification.num_elements = 6;
+  return options;
+}
+
 fesd::SceneSolveOptions robotSolveOptions() {
   fesd::SceneSolveOptions options;
   options.lazy_pairs = false;

@@ -21,6 +21,14 @@ fesd::SceneTask slowPushingTask();
 /// (3, 0) (weight 100) in T = 2 on 20 intervals.
 fesd::SceneTask pushAlongX();
 
+/// pushAlongX with a smaller puck (R = 0.3) 0.05 above a wall (y >= -0.35) that the pusher
+/// (R = 0.5, starting at (-2, 0.3)) cannot get straight behind it along: pushed, the puck slides
+/// along the wall and ends 0.05 from its target (3, 0) at best.
+fesd::SceneTask pushAlongAWall();
+
+/// The node's default grid (3 elements, 2 stages) and verification grid (n_s = 3, N_FE = 6).
+fesd::SceneSolveOptions nodeGridOptions();
+
 /// What the node asks of a robot solve: every pair in reach modelled, the plan verified.
 fesd::SceneSolveOptions robotSolveOptions();
 

@@ -58,6 +58,22 @@ TEST(PusherPoses, APusherSitsStraightBehindUnlessItsWorkspaceForbids) {
   EXPECT_TRUE(fesd::placePushers(task, {}, 1, from, to, again).empty());
 }
 
+TEST(PusherPoses, APusherKeepsClearOfWallsAndABodyEndsAgainstTheWallItCannotBePushedAlong) {
+  const fesd::SceneTask task = fesd_test::pushAlongAWall();
+  const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();
+  std::vector<bool> busy(2, false);
+  // Straight behind the puck the pusher would cut 0.15 into the wall: it tilts away from it.
+  const std::vector<fesd::PushAssignment> placed =
+      fesd::placePushers(task, pairs, 1, Eigen::Vector2d(0, 0), Eigen::Vector2d(3, 0), busy);
+  ASSERT_EQ(placed.size(), 1u);
+  EXPECT_GE(placed[0].offset.y(), 0.15);
+  EXPECT_LT(placed[0].offset.y(), 0.15 + 0.8 * std::sin(M_PI / 180.0));
+  // So the target, 0.05 off the wall, is out of reach: the puck ends against the wall below it.
+  const fesd::PushPlan::ShortPush end = fesd::pushableEnd(task, pairs, 1, {false, false});
+  EXPECT_FALSE(end.time_limited);
+  EXPECT_LT((end.end - Eigen::Vector2d(3.0, -0.05)).norm(), 1e-12);
+}
+
 TEST(PusherPoses, TheShortestPushGoesAtTheSpeedBoundsAndSharesThePush) {
   // pushingTask: the pusher (|u_d| <= 2) 2 from its pose behind the puck; one pusher moves the
   // puck at half its speed.

@@ -15,7 +15,7 @@ fesd::PlanStructure structure() {
   s.modelled_pairs = {"hand/sphere_0/puck"};
   s.horizon = 2.0;
   s.intervals = 8;
-  s.elements = 2;
+  s.interval_elements.assign(8, 2);
   s.stages = 2;
   return s;
 }
@@ -93,18 +93,31 @@ TEST(WarmStart, ReplanningStartsOnThePreviousPlansRungWhenItIsFiner) {
   grid.num_elements = 2;
   fesd::PlanStructure previous = structure();
   previous.stages = 4;
-  previous.elements = 3;
-  fesd::startOnPreviousRung(previous, grid);
+  previous.interval_elements = {3, 3, 3, 6, 6, 3, 3, 3};  // a ladder refined intervals 3 and 4
+  fesd::startOnPreviousRung(previous, 8, 2.0, grid);
   EXPECT_EQ(grid.num_stages, 4);
-  EXPECT_EQ(grid.num_elements, 3);
-  fesd::DiscretizationOptions finer = grid;
+  EXPECT_EQ(grid.interval_elements, previous.interval_elements);
+  fesd::DiscretizationOptions finer;
   finer.num_elements = 5;  // the request asks for more than the previous plan had
-  fesd::startOnPreviousRung(previous, finer);
+  fesd::startOnPreviousRung(previous, 8, 2.0, finer);
   EXPECT_EQ(finer.num_elements, 5);
-  EXPECT_EQ(finer.num_stages, 4);
+  EXPECT_TRUE(finer.interval_elements.empty());
+  EXPECT_EQ(finer.num_stages, fesd::DiscretizationOptions{}.num_stages);
+  fesd::DiscretizationOptions more_intervals;
+  fesd::startOnPreviousRung(previous, 10, 2.5, more_intervals);
+  EXPECT_TRUE(more_intervals.interval_elements.empty());
+  // Three intervals of 0.25 s executed: the rest of the previous grid.
+  fesd::DiscretizationOptions rest;
+  rest.num_elements = 2;
+  fesd::startOnPreviousRung(previous, 5, 1.25, rest);
+  EXPECT_EQ(rest.interval_elements, (std::vector<int>{6, 6, 3, 3, 3}));
+  EXPECT_EQ(rest.num_stages, 4);
+  fesd::DiscretizationOptions other_length;
+  fesd::startOnPreviousRung(previous, 5, 1.0, other_length);
+  EXPECT_TRUE(other_length.interval_elements.empty());
   fesd::DiscretizationOptions standard;
   standard.switch_detection = false;
-  fesd::startOnPreviousRung(previous, standard);
+  fesd::startOnPreviousRung(previous, 8, 2.0, standard);
   EXPECT_EQ(standard.num_stages, fesd::DiscretizationOptions{}.num_stages);
 }
 

@@ -54,7 +54,10 @@ class CollocationDiscretization : public Discretization {
   const DiscretizationOptions& options() const { return options_; }
   const ButcherTableau& tableau() const { return tableau_; }
   int numElements() const { return grid_.numElements(); }  ///< all intervals
-  double nominalStep() const { return nominal_step_; }
+  /// h0 of an element: its control interval's length over the interval's elements.
+  double nominalStep(int element) const { return grid_.nominal_steps[element]; }
+  /// Whether an element is the first of its control interval.
+  bool startsInterval(int element) const { return grid_.startsInterval(element); }
   int startStateIndex() const { return start_state_; }
   int controlIndex(int interval) const { return grid_.controls[interval]; }
   int stepIndex(int element) const { return grid_.steps[element]; }
@@ -119,7 +122,6 @@ class CollocationDiscretization : public Discretization {
   DiscretizationOptions options_;
   ButcherTableau tableau_;
   int nx_ = 0, nu_ = 0;
-  double nominal_step_ = 0.0;
   bool steps_free_ = false;
   NlpAssembly nlp_;
   int start_state_ = -1;
@@ -138,17 +140,15 @@ class CollocationDiscretization : public Discretization {
 
 template <class AddElement>
 void CollocationDiscretization::buildGrid(AddElement add_element) {
-  const double step_lower =
-      steps_free_ ? (1.0 - options_.step_bound) * nominal_step_ : nominal_step_;
-  const double step_upper =
-      steps_free_ ? (1.0 + options_.step_bound) * nominal_step_ : nominal_step_;
-  grid_.elements_per_interval = options_.num_elements;
   for (int k = 0; k < ocp_.num_intervals; ++k) {
     grid_.controls.push_back(
         nlp_.addVariables(nu_, -NlpAssembly::kInfinity, NlpAssembly::kInfinity));
     freeControl(k);
-    for (int n = 0; n < options_.num_elements; ++n) {
-      grid_.steps.push_back(nlp_.addVariables(1, step_lower, step_upper, nominal_step_));
+    for (int n = grid_.first_element[k]; n < grid_.first_element[k + 1]; ++n) {
+      const double h0 = grid_.nominal_steps[n];
+      const double lower = steps_free_ ? (1.0 - options_.step_bound) * h0 : h0;
+      const double upper = steps_free_ ? (1.0 + options_.step_bound) * h0 : h0;
+      grid_.steps.push_back(nlp_.addVariables(1, lower, upper, h0));
       const ElementStates states = add_element(grid_.numElements() - 1);
       grid_.stage_states.push_back(states.stages);
       grid_.end_states.push_back(states.end);

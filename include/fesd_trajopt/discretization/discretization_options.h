@@ -1,5 +1,7 @@
 #pragma once
 
+#include <vector>
+
 #include "fesd_trajopt/discretization/butcher_tableau.h"
 
 namespace fesd {
@@ -51,16 +53,30 @@ struct FilippovOptions {
   double equilibration_relaxation = 1e6;
 };
 
+/// A constraint of a PDS kept nonnegative at a point of an element's collocation polynomial
+/// between its stage points: where a plan passes a body by without a force, its polynomial can
+/// cut into it between stage points that all keep clear (a graze).
+struct GapGuard {
+  int element;      ///< global index
+  int constraint;   ///< the model's constraint (pair) index
+  double fraction;  ///< of the element's length, in (0, 1)
+};
+
 /// Options of both discretisations; the nested structs hold what only one of them reads.
 struct DiscretizationOptions {
   CollocationFamily family = CollocationFamily::kRadauIIA;
   int num_stages = 2;
-  int num_elements = 2;          ///< finite elements per control interval
+  int num_elements = 2;  ///< finite elements per control interval
+  /// Elements per control interval where they differ between intervals (the accuracy ladder
+  /// refines the intervals it blames); empty: num_elements in every interval.
+  std::vector<int> interval_elements;
   bool switch_detection = true;  ///< FESD; false gives the standard fixed-step method
   CrossComplementarity cross_complementarity = CrossComplementarity::kElementSums;
   double step_bound = 1.0;  ///< gamma_h: (1 - gamma_h) h0 <= h_n <= (1 + gamma_h) h0
   PdsOptions pds;
   FilippovOptions filippov;
+  /// PDS only: constraints kept >= 0 between stage points.
+  std::vector<GapGuard> gap_guards;
   /// rho of the regulariser  rho * sigma * sum_n ((h_n - h_{n-1}) / h0)^2  within each control
   /// interval. The relaxed NLPs (sigma > 0) leave the steps partly free; this keeps their path
   /// away from collapsed elements. At sigma -> 0 it vanishes and only the exact step

@@ -103,6 +103,10 @@ ClosestApproach closestApproach(const SmoothFunction& constraints, int constrain
                                 const Eigen::VectorXd& nodes, const Eigen::VectorXd& start_state,
                                 const Eigen::MatrixXd& stage_states, int samples_per_gap = 4);
 
+/// The weights of the start state and of each stage state in an element's collocation polynomial
+/// at the fraction `t` of the element (the Lagrange basis at nodes 0 and `nodes`, evaluated at t).
+std::vector<double> collocationWeights(const Eigen::VectorXd& nodes, double t);
+
 /// The state of an element's collocation polynomial, the polynomial of degree n_s through the
 /// start state at 0 and the stage states at `nodes`, at the fraction `t` of the element.
 Eigen::VectorXd collocationState(const Eigen::VectorXd& nodes, const Eigen::VectorXd& start_state,

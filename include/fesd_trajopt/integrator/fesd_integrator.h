@@ -75,6 +75,11 @@ struct SimulationOptions {
   /// into a step left one element 1.8 times too long, the error 140 times above both
   /// neighbouring grids'). On twice the elements no element exceeds its nominal length.
   double max_element_stretch = 1.05;
+  /// An exact but stretched part is refined by the homotopy too when its active sets find no
+  /// solution on twice the elements. false: by the active sets only (a plan's verification:
+  /// on the cluttered scenes such homotopies cost 100-1100 Ipopt iterations a part, for a
+  /// reference that is finer than the plan either way).
+  bool refine_by_homotopy = true;
   /// Solve each part first as the smooth square system of its predicted active set, by Newton's
   /// method, locating switches from violated signs (solveByActiveSets); the homotopy only where
   /// that finds no exact FESD solution. false: the homotopy for every part, for comparison.
@@ -122,6 +127,19 @@ struct SimulationResult {
   SimulationSensitivities sensitivities;  ///< SimulationOptions::sensitivities
 };
 
+/// A simulation by multiple shooting (FesdIntegrator::shoot): each step from a start state of its
+/// own, as a plan is verified interval by interval.
+struct ShootingResult {
+  SolveStatus status = SolveStatus::kSolverError;
+  std::string message;
+  std::vector<Trajectory> steps;  ///< per step solved, its trajectory (times from k h)
+  /// With SimulationOptions::sensitivities, per step solved: d x(end) / d x(start), n_x x n_x;
+  /// empty where not defined (why_undefined says why).
+  std::vector<Eigen::MatrixXd> transitions;
+  std::vector<std::string> why_undefined;
+  MpccReport totals;  ///< summed over the steps
+};
+
 /// Simulates a nonsmooth system (any DynamicsModel) with FESD: num_steps steps of length horizon /
 /// num_steps, each with num_elements finite elements, solved one after another as small MPCCs.
 class FesdIntegrator {
@@ -132,6 +150,17 @@ class FesdIntegrator {
   /// the model has no controls. Stops at the first step that does not converge.
   SimulationResult simulate(const Eigen::VectorXd& x0, double horizon, int num_steps,
                             const std::vector<Eigen::VectorXd>& controls = {});
+
+  /// Step k of length step_length from starts[k] under controls[k] (none when the model has no
+  /// controls), each from its own start rather than from the end of the step before; stops at
+  /// the first step that does not converge. The solvers and step problems are shared.
+  /// `reference` (optional): a trajectory near the one sought with one control interval per step
+  /// (a plan being verified, in the model's states and pairs), whose forces predict every part's
+  /// active sets and how each start is reached (the solution from a start does not depend on
+  /// them; finding it by Newton's method does).
+  ShootingResult shoot(const std::vector<Eigen::VectorXd>& starts, double step_length,
+                       const std::vector<Eigen::VectorXd>& controls,
+                       const Trajectory* reference = nullptr);
 
  private:
   class Run;

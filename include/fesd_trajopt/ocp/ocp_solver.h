@@ -97,6 +97,14 @@ class OcpSolver {
   /// that fails (neither success nor interrupted) solve(fallback) within what is left of the
   /// budget; the report then holds both.
   OcpSolution solve(const Trajectory& trajectory, const TrajectoryGuess& fallback);
+  /// From a plan on this grid that nearly solves this problem (a coarser rung's solution refined
+  /// onto it, the round before with fewer pairs or without gap guards): its active set polished
+  /// first, i.e. the branch NLP of the plan's contacts, kept if B-stationary; else the homotopy
+  /// from the plan at `sigma` (no tighter than warm_start_sigma); and when that fails (neither
+  /// success nor interrupted) solve(fallback) within what is left of the budget. `polish_sigma`:
+  /// the relaxation whose vanishing terms the plan was polished with (MpccReport::polish_sigma).
+  OcpSolution solveFromPlan(const Trajectory& plan, double polish_sigma, double sigma,
+                            const TrajectoryGuess& fallback);
 
   const Discretization& discretization() const { return *discretization_; }
   const OcpOptions& options() const { return options_; }
@@ -124,7 +132,7 @@ class OcpSolver {
   OcpOptions options_;
   std::unique_ptr<Discretization> discretization_;
   std::unique_ptr<Discretization> fixed_grid_;  ///< the standard method on the same grid
-  MpccSolver solver_, fixed_grid_solver_, guess_solver_;
+  MpccSolver solver_, fixed_grid_solver_, guess_solver_, plan_solver_;
 };
 
 /// The OCP's system from its initial state under the given controls (one per control interval)

@@ -2,34 +2,18 @@
 
 #include <limits>
 #include <string>
-#include <utility>
 #include <vector>
 
+#include "fesd_trajopt/planning/accuracy_rung.h"
+#include "fesd_trajopt/planning/scene_solver.h"
 #include "fesd_trajopt/scene/scene_task.h"
-#include "fesd_trajopt/solver/mpcc_solver.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 
 namespace fesd {
 
-/// One rung of an accuracy ladder: a solve on this discretisation and its verification.
-struct AccuracyRung {
-  int stages = 0, elements = 0;
-  double verification_error = std::numeric_limits<double>::infinity();
-  double wall_seconds = 0.0;
-  SolveStatus status = SolveStatus::kSolverError;
-};
-
-/// (stages, elements) of each rung from a first discretisation: more stages first (the order
-/// grows with n_s: 2 n_s - 1 for Radau-IIA, at the same NLP structure per element), then more
-/// elements per interval, up to the limits.
-std::vector<std::pair<int, int>> accuracyRungs(int stages, int elements, const TaskLimits& limits);
-
-/// Whether an outcome of this status is a solution of its NLP: a success, or one whose only
-/// shortfall is a target it did not reach.
-bool solvedItsNlp(SolveStatus status);
-
-/// The bookkeeping of a ladder, whatever kind of task climbs it: which rung is the best, when to
-/// stop, and the answer's status and message.
+/// The bookkeeping of a ladder: which rung is the best, when to stop, and the answer's status
+/// and message. A rung meets the target when it solved its NLP, its verification error is at
+/// most the target and its plan cuts into no body between stage points.
 class AccuracyLadder {
  public:
   AccuracyLadder(double target_accuracy, double budget)
@@ -37,9 +21,12 @@ class AccuracyLadder {
 
   double remainingBudget() const;
   /// Records a rung (error infinite when unverified or failed); true when its outcome is the
-  /// best so far (the most accurate solution of its NLP, else the first rung).
+  /// best so far (a rung that meets the target, else the most accurate solution of its NLP, else
+  /// the first rung).
   bool record(const AccuracyRung& rung);
-  bool finished() const { return met_ || cancelled_ || out_of_time_; }
+  /// No further rung: the target met, cancelled, out of time, or `ended` (nothing left to refine).
+  bool finished() const { return met_ || cancelled_ || out_of_time_ || ended_; }
+  void end() { ended_ = true; }
   const std::vector<AccuracyRung>& rungs() const { return rungs_; }
   /// The best rung's status once the ladder ended: kAccuracyNotMet (or kTimeout) for a
   /// solution that is not accurate enough, kCancelled when cancelled, else its own.
@@ -48,43 +35,45 @@ class AccuracyLadder {
   std::string summary() const;
 
  private:
+  bool meets(const AccuracyRung& rung) const;
+
   double target_, budget_;
   Stopwatch stopwatch_;
   std::vector<AccuracyRung> rungs_;
-  double best_error_ = std::numeric_limits<double>::infinity();
-  SolveStatus best_status_ = SolveStatus::kSolverError;
-  bool met_ = false, cancelled_ = false, out_of_time_ = false;
+  int best_ = -1;
+  bool met_ = false, cancelled_ = false, out_of_time_ = false, ended_ = false;
 };
 
-/// The accuracy ladder: `solve(options)` (an outcome with status, message, verification_error
-/// and refinements) on `options`' discretisation, then on each further rung of accuracyRungs,
-/// each within what is left of the budget, until a rung's verification error is at most
-/// target_accuracy (the best rung keeps its status), the budget is spent (kTimeout) or the
-/// ladder ends (kAccuracyNotMet). `refused(outcome)`: a task no rung can change (stop there).
-template <class Outcome, class Options, class Solve, class Refused>
-Outcome climbAccuracyLadder(Options options, const TaskLimits& limits, double target_accuracy,
-                            Solve solve, Refused refused) {
-  AccuracyLadder ladder(target_accuracy, options.ocp.homotopy.wall_time_budget);
-  Outcome best;
-  for (const auto& [stages, elements] :
-       accuracyRungs(options.ocp.discretization.num_stages, options.ocp.discretization.num_elements,
-                     limits)) {
-    Stopwatch rung_time;
-    options.ocp.discretization.num_stages = stages;
-    options.ocp.discretization.num_elements = elements;
-    options.ocp.homotopy.wall_time_budget = ladder.remainingBudget();
-    Outcome outcome = solve(options);
-    if (refused(outcome)) return outcome;
-    if (ladder.record({stages, elements, outcome.verification_error, rung_time.wallSeconds(),
-                       outcome.status})) {
-      best = std::move(outcome);
-    }
-    if (ladder.finished()) break;
-  }
-  best.refinements = ladder.rungs();
-  best.status = ladder.finalStatus(best.status);
-  best.message = ladder.summary() + "; " + best.message;
-  return best;
-}
+/// The next rung of a plan that missed the target: its discretisation and held grazes, and what
+/// changed and why (AccuracyRung's change, reason, refined_intervals, error_before).
+struct RungChange {
+  int stages = 0;
+  std::vector<int> interval_elements;
+  std::vector<PairInterval> held_grazes;  ///< the previous rung's and the new ones
+  std::string change, reason;
+  std::vector<int> refined_intervals;
+  double error_before = std::numeric_limits<double>::quiet_NaN();
+  bool none = true;  ///< nothing left to refine within the limits
+};
+
+/// What the verification blames and how the next rung refines it, from the plan it has:
+/// its grazes are held (gap guards along the elements of their intervals); intervals whose
+/// error exceeds the target and that hold a switch, an unresolved switch or a contact of the
+/// re-simulation get more elements (twice as many, up to limits.max_elements); if only smooth
+/// intervals are blamed, one more stage everywhere (the order grows with n_s: 2 n_s - 1), then
+/// more elements in them. `grid`: the rung's stages and elements per interval.
+RungChange nextRung(const SceneTask& task, const SceneOutcome& outcome, int stages,
+                    const std::vector<int>& interval_elements, const TaskLimits& limits,
+                    double target_accuracy, double graze_depth);
+
+/// The accuracy ladder of a scene task: solved and verified on options' discretisation, then
+/// while the verification error exceeds target_accuracy or the plan grazes a body, refined where
+/// nextRung blames it, each rung starting from the plan the one before it found (mapped onto the
+/// finer grid; the cold path when that fails), within the budget. Returns the rung that met the
+/// target, else the most accurate solution (or a failed first rung), with every rung in
+/// `refinements`. A warm start (options.previous, a verified solution on a finer rung of this
+/// ladder) starts the ladder on that rung.
+SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
+                             SceneSolveOptions options, double target_accuracy);
 
 }  // namespace fesd

@@ -17,8 +17,9 @@ int bodyPairIndex(const std::vector<ContactPair>& pairs, int a, int b);
 
 /// The pushers of a passive body pushed straight from `from` to `to`, placed in index order:
 /// each actuated body that is not `busy` and has a pair with it in `pairs`, at the pose most
-/// directly behind the push (tilted in steps of 1 degree up to 89) inside its workspace at both
-/// ends and apart from those placed before it. The placed ones become busy.
+/// directly behind the push (tilted in steps of 1 degree up to 89) inside its workspace and
+/// clear of the walls at both ends, clear of the obstacles at the start (a push may go round
+/// them in legs), and apart from those placed before it. The placed ones become busy.
 std::vector<PushAssignment> placePushers(const SceneTask& task,
                                          const std::vector<ContactPair>& pairs, int pushed,
                                          const Eigen::VectorXd& from, const Eigen::VectorXd& to,

@@ -9,12 +9,23 @@
 
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
-#include "fesd_trajopt/planning/accuracy_ladder.h"
+#include "fesd_trajopt/planning/accuracy_rung.h"
+#include "fesd_trajopt/planning/plan_verification.h"
 #include "fesd_trajopt/planning/push_plan.h"
 #include "fesd_trajopt/scene/scene_task.h"
 #include "fesd_trajopt/scene/warm_start.h"
 
 namespace fesd {
+
+/// A pair whose gap a solve keeps along the whole of every element of a control interval (gap
+/// guards between the stage points), where a plan grazed it.
+struct PairInterval {
+  ContactPair pair;  ///< the full task's indices
+  int interval = 0;
+  bool operator==(const PairInterval& other) const {
+    return pair == other.pair && interval == other.interval;
+  }
+};
 
 /// A scene task solved or simulated, in the full scene's terms. A task that is refused
 /// (`invalid`) or cannot be met (`infeasible`) is never solved: status and trajectory stay
@@ -38,17 +49,26 @@ struct SceneOutcome {
   /// The smallest gap of the modelled pairs at the element boundaries (negative: penetration).
   double boundary_gap = std::numeric_limits<double>::quiet_NaN();
   bool verified = false;
-  /// Distance of the re-simulated terminal state from the solution's (resimulationError).
-  double verification_error = std::numeric_limits<double>::quiet_NaN();
-  /// The smallest gap of every pair in reach at the verification's element boundaries.
-  double verification_gap = std::numeric_limits<double>::quiet_NaN();
-  PlanStructure structure;  ///< of the solve (not for simulations)
+  Verification verification;  ///< when verified
+  PlanStructure structure;    ///< of the solve (not for simulations)
   /// A warm start was asked for but the solve started cold (or fell back to cold): why.
   std::string cold_start_reason;
   /// The first round started from `previous` (later lazy-pair rounds start from the round
   /// before, so `start` alone does not tell).
   bool warm_started = false;
   std::vector<AccuracyRung> refinements;  ///< solveToAccuracy's rungs, in order
+  /// The pairs and intervals whose gaps the last NLP kept along whole elements.
+  std::vector<PairInterval> held_grazes;
+  /// Grazes' deepest points held exactly on this grid (element and fraction), besides held_grazes.
+  std::vector<Graze> guard_points;
+  /// The plan's own grazes left (planGrazes: cuts into a body between stage points).
+  std::vector<Graze> grazes;
+  int graze_rounds = 0;  ///< solves that added gap guards for the plan's grazes
+  /// The solve started from a plan on a coarser rung (SceneSolveOptions::refine) and kept it.
+  bool refined_plan = false;
+  /// What a solve that started from a plan (OcpStart::kTrajectory) started from: "previous
+  /// round", "coarser rung's plan", "previous plan after k interval(s)".
+  std::string plan_source;
   /// A simulation's sensitivities (SimulationOptions::sensitivities), by the full scene's state.
   SimulationSensitivities sensitivities;
   /// Solves with a growing set of modelled pairs (SceneSolveOptions::lazy_pairs): 1 when the
@@ -92,6 +112,12 @@ struct SceneSolveOptions {
   /// in a local optimum its re-simulation missed by 6e-2, against 3e-5 with all pairs).
   int all_pairs_up_to = 0;
   double pair_margin = 0.1;  ///< lazy pairs' margin, relative to the pair's size (pairSize)
+  /// The first round's margin: the pairs the first guess comes this near (relative to pairSize)
+  /// are modelled from the start, since the solution strays from the guess.
+  double first_round_margin = 0.1;
+  /// A plan whose collocation polynomial cuts into a pair it holds no force of deeper than this,
+  /// relative to the pair's size, between stage points grazes it (planGrazes).
+  double graze_depth = 1e-6;
   /// Re-simulate the optimal controls finely with every pair in reach modelled and report the
   /// end state's deviation.
   bool verify = false;
@@ -101,6 +127,14 @@ struct SceneSolveOptions {
   /// Warm start from this outcome of an earlier solve when warmStartMismatch allows it (falling
   /// back to the push plan if the warm solve fails); nullptr: cold. Not owned.
   const SceneOutcome* previous = nullptr;
+  /// A solution of this task on a coarser grid (the accuracy ladder's rung before): the solve
+  /// models its pairs and starts from its plan mapped onto this grid (refinedTrajectory), its
+  /// active set first (OcpSolver::solveFromPlan), falling back to the push plan. Not owned.
+  const SceneOutcome* refine = nullptr;
+  /// Pairs whose gaps are kept along whole elements of these intervals from the first round.
+  std::vector<PairInterval> held_grazes;
+  /// Solves that hold the plan's new grazes (gap guards) before the answer, at most.
+  int max_graze_rounds = 3;
   const SolveMonitor* monitor = nullptr;  ///< progress and cancel of the solve; not owned
 };
 
@@ -119,31 +153,6 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
 /// it all).
 SimulationOptions verificationOptions(const DiscretizationOptions& configured,
                                       const OcpOptions& solve, double remaining_budget);
-
-/// A solution's controls re-simulated on a finer grid, in the full scene, as if every pair in
-/// reach (the outcome's modelled and checked pairs) were modelled: the verification of
-/// solveSceneTask. Lazily, as the solve: with the modelled pairs first, then again with every
-/// checked pair that came within `margin` (relative to pairSize) of contact, until none does; a
-/// pair that stays farther away never acts, so the re-simulation is the one with all pairs.
-struct Verification {
-  SolveStatus status = SolveStatus::kSolverError;
-  Trajectory trajectory;  ///< of the full scene
-  /// Distance of the re-simulated end state from the outcome's; infinity when it failed.
-  double error = std::numeric_limits<double>::infinity();
-  /// The smallest gap of every pair in reach at the re-simulation's element boundaries.
-  double gap = std::numeric_limits<double>::quiet_NaN();
-  int modelled_pairs = 0;  ///< in the last re-simulation
-};
-Verification verifyOutcome(const SceneTask& task, const SceneOutcome& outcome,
-                           const SimulationOptions& fine, double margin);
-
-/// The accuracy ladder (climbAccuracyLadder) of a scene task: solved and verified on options'
-/// discretisation, then on finer ones until the verification error is at most target_accuracy.
-/// Returns the rung that met it, else the most accurate solution (or a failed first rung), with
-/// every rung in `refinements`. A warm start (options.previous, a verified solution on a finer
-/// rung of this ladder) starts the ladder on that rung.
-SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
-                             SceneSolveOptions options, double target_accuracy);
 
 /// The smallest gap of `pairs` over the states at the trajectory's element boundaries.
 double smallestBoundaryGap(const Scene& scene, const std::vector<ContactPair>& pairs,

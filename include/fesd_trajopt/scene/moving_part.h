@@ -23,6 +23,10 @@ struct MovingPart {
 /// always move; the order of bodies, controls and modelled pairs is kept.
 MovingPart movingPart(const SceneTask& task, const std::vector<PairDecision>& decisions);
 
+/// A state of the moving part: the joints and its bodies' positions in a full scene state.
+Eigen::VectorXd partState(const SceneTask& full, const MovingPart& part,
+                          const Eigen::VectorXd& state);
+
 /// A trajectory of the moving part as one of the full scene: frozen bodies keep their initial
 /// positions in every state and stage state; controls, multipliers and switches are unchanged.
 Trajectory fullSceneTrajectory(const SceneTask& full, const MovingPart& part,

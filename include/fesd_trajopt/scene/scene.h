@@ -118,6 +118,9 @@ class Scene {
   /// First control index of a free body's velocity, or -1 for a passive body.
   int controlIndex(int body) const;
   Eigen::VectorXd initialState() const;
+  /// Puts the robot's joints and the free bodies at a state of the scene (of stateSize()), which
+  /// becomes its initial state (a replan from where a plan's execution got to).
+  void setInitialState(const Eigen::VectorXd& x);
 
   /// The free bodies first, in order (each one, or its spheres), then every robot sphere.
   std::vector<CollisionBody> collisionBodies() const;

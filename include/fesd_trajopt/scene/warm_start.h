@@ -20,8 +20,11 @@ struct PlanStructure {
   std::vector<std::string> moving_bodies;   ///< "name (radius r, actuated|passive)", joints
   std::vector<std::string> modelled_pairs;  ///< the scene's pair names
   double horizon = 0.0;
-  int intervals = 0, elements = 0, stages = 0;
+  int intervals = 0, stages = 0;
+  std::vector<int> interval_elements;  ///< elements per control interval
   bool switch_detection = true;
+
+  int largestElements() const;  ///< the most elements of any interval (0 without intervals)
 };
 
 /// A structure of these moving bodies and modelled pairs (names), on this grid.
@@ -44,15 +47,23 @@ std::string warmStartRefusal(bool solved, int point_size, const NlpSizes& previo
                              const PlanStructure& previous, const NlpSizes& now_sizes,
                              const PlanStructure& now);
 
+/// How many control intervals of a previous plan a replan starts after: the same interval length,
+/// stages and method, `now` having k fewer intervals (k >= 0) with at least as many elements in
+/// each as the previous plan's interval k + i; -1 when it is not so. Such a replan starts from the
+/// rest of the previous plan (laterPart) whatever its bodies and pairs.
+int intervalsDone(const PlanStructure& previous, const PlanStructure& now);
+
 /// Which of the candidate pairs (names) a warm start's first round models with lazy pairs: those
 /// the previous plan ended with (`previous`), when every one of them is still a candidate, so
 /// that the NLPs can match; empty when one is not.
 std::vector<bool> previousPairsAmong(const std::vector<std::string>& candidates,
                                      const std::vector<std::string>& previous);
 
-/// Replanning on an accuracy ladder starts on the rung the last plan needed, since its warm
-/// start fits only there: `grid` takes the previous plan's stages and elements when that plan
-/// (a verified solution) used the same method on a grid at least as fine.
-void startOnPreviousRung(const PlanStructure& previous, DiscretizationOptions& grid);
+/// A replan starts on the grid the last plan needed, since its warm start fits only there:
+/// `grid` takes the previous plan's stages and elements per interval (of the intervals still to
+/// come when `horizon` is shorter by whole intervals: intervalsDone) when that plan (a solution
+/// of its NLP) used the same method on a grid at least as fine in every interval.
+void startOnPreviousRung(const PlanStructure& previous, int intervals, double horizon,
+                         DiscretizationOptions& grid);
 
 }  // namespace fesd

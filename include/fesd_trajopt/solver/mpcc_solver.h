@@ -120,6 +120,12 @@ struct HomotopyOptions {
   /// although every branch keeps the point (the showcase with a disc at (0.5, 6): the flipped
   /// branch returned the same objective in 10 iterations, 213 -> 61 in all).
   int branch_check_iterations = 30;
+  /// Ipopt iterations for polishing an active set before the homotopy goes on (early polishing,
+  /// a previous solution's or a plan's): near its solution a branch NLP converges in tens of
+  /// iterations (warm replans 11-15, a plan refined onto a finer grid 15-40); one whose active
+  /// set does not fit ran to Ipopt's limit of 500 (a lazy round's new pair the plan passed
+  /// through; an early polish of a push along a wall).
+  int polish_iterations = 100;
   /// A homotopy that fails later still gets a polishing attempt from its best converged
   /// relaxed NLP, if that one's complementarity residual is at most this: polishing needs the
   /// right active set, not a tiny sigma.
