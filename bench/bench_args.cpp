@@ -110,6 +110,10 @@ void applyHomotopyArguments(const Arguments& args, fesd::HomotopyOptions& option
       args.text("cold-mu-strategy", options.ipopt.cold_start_mu_strategy);
   options.ipopt.print_level = args.integer("ipopt-print-level", options.ipopt.print_level);
   options.ipopt.linear_solver = args.text("linear-solver", options.ipopt.linear_solver);
+  const std::string method = args.text("mpcc-method", fesd::methodName(options.method));
+  if (!fesd::parseMethod(method, options.method)) {
+    throw std::invalid_argument("--mpcc-method=homotopy|active_set");
+  }
   for (const std::string& option : args.texts("ipopt", {})) {
     const size_t colon = option.find(':');
     if (colon == std::string::npos) throw std::invalid_argument("--ipopt takes name:value,...");

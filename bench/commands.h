@@ -23,5 +23,6 @@ int sweepAccuracy(const Arguments& args);
 int kkt(const Arguments& args);
 int kktSolvers(const Arguments& args);
 int robotPush(const Arguments& args);
+int mpccMethods(const Arguments& args);
 
 }  // namespace fesd_bench

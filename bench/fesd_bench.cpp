@@ -78,6 +78,14 @@ const std::map<std::string, Command>& commands() {
         "    contact and release times per pair. --robot=panda|planar_arm --pairs=lazy|all\n"
         "    --intervals --horizon --elements --stages --budget=150 --margin --verify=true\n"
         "    --showcase=true and the homotopy/Ipopt options of ocp-manipulation"}},
+      {"mpcc-methods",
+       {fesd_bench::mpccMethods,
+        "The homotopy and the active-set method (LPECs, branch NLPs) on the node's default\n"
+        "    request of the default scene, the planning families and the shipped robots (Panda\n"
+        "    at 20 intervals, 4 s): status, seconds, iterations, relaxed and branch NLPs, LPECs,\n"
+        "    objective, certificate; CSV and a summary per method. --families=... --scenes=12\n"
+        "    --first-seed=0 --robots=planar_arm,panda --methods=homotopy,active_set\n"
+        "    --budget=120 --accuracy=1e-2"}},
       {"planning-sweep",
        {fesd_bench::planningSweep,
         "Seeded random planning scenes (families: push, wall, beside, second, showcase,\n"

@@ -56,6 +56,7 @@ int nodeDefaultSweep(const Arguments& args, const std::vector<std::string>& fami
   namespace ps = fesd::planning_scenes;
   fesd::SceneSolveOptions options = nodeDefaultOptions(args.number("budget", 120.0));
   options.first_round_margin = args.number("first-margin", options.first_round_margin);
+  applyHomotopyArguments(args, options.ocp.homotopy);
   const double accuracy = args.number("accuracy", 1e-2);
   const double horizon = args.number("horizon", 0.0);
   const int intervals = args.integer("intervals", 0);
@@ -79,7 +80,7 @@ int nodeDefaultSweep(const Arguments& args, const std::vector<std::string>& fami
   std::printf(
       "family,seed,status,wall_s,ratio,ipopt_iterations,objective,rungs,pair_rounds,graze_rounds,"
       "verification_error,open_loop_error,open_loop_gain,grazes,verification_s,target_distance,"
-      "rung_changes,history,description\n");
+      "certified,branch_nlps,lpecs,lpec_s,rung_changes,history,description\n");
   std::vector<double> walls;
   int count = 0, successes = 0;
   for (const std::string& family : families) {
@@ -107,13 +108,17 @@ int nodeDefaultSweep(const Arguments& args, const std::vector<std::string>& fami
       }
       const fesd::Verification& v = outcome.verification;
       std::printf(
-          "%s,%u,%s,%.3f,%.1f,%d,%.10g,%zu,%d,%d,%.3g,%.3g,%.3g,%zu,%.3f,%.3g,\"%s\",%s,%s\n",
+          "%s,%u,%s,%.3f,%.1f,%d,%.10g,%zu,%d,%d,%.3g,%.3g,%.3g,%zu,%.3f,%.3g,%d,%d,%d,%.3f,\"%s\","
+          "%"
+          "s,%s\n",
           family.c_str(), scene.seed,
           outcome.solved() ? fesd::statusName(outcome.status).c_str() : "refused", seconds,
           seconds / default_seconds, outcome.report.iterations, outcome.report.objective,
           outcome.refinements.size(), outcome.pair_rounds, outcome.graze_rounds, v.error,
-          v.open_loop_error, v.open_loop_gain, v.grazes.size(), v.seconds, target, changes.c_str(),
-          stepHistory(outcome.report).c_str(), scene.description.c_str());
+          v.open_loop_error, v.open_loop_gain, v.grazes.size(), v.seconds, target,
+          outcome.report.certified, outcome.report.branch_nlps, outcome.report.lpecs,
+          outcome.report.lpec_seconds, changes.c_str(), stepHistory(outcome.report).c_str(),
+          scene.description.c_str());
       if (!outcome.solved() || outcome.status != fesd::SolveStatus::kSuccess) {
         std::fprintf(stderr, "# %s %u: %s\n", family.c_str(), scene.seed, outcome.message.c_str());
       }

@@ -144,7 +144,16 @@ class NodeServices(unittest.TestCase):
         self.assertIn(SwitchEvent.RELEASE, kinds)
         final = {b.name: b.positions[-1] for b in response.solution.bodies}
         self.assertLess(math.hypot(final["object"].x, final["object"].y - 10.0), 0.1)
-        self.assertLessEqual(response.solution.statistics.complementarity_residual, 1e-8)
+        statistics = response.solution.statistics
+        self.assertLessEqual(statistics.complementarity_residual, 1e-8)
+        # The answer is certified B-stationary by an LPEC at it (no pair near a switch here: the
+        # branch NLP's KKT point is the certificate, value 0).
+        self.assertEqual(statistics.mpcc_method, "homotopy")
+        self.assertTrue(statistics.certified, statistics.certificate)
+        self.assertEqual(statistics.lpec_value, 0.0)
+        self.assertEqual(statistics.lpec_radius, 1e-3)
+        self.assertGreaterEqual(statistics.lpecs, 1)
+        self.assertEqual(statistics.relaxed_nlps + statistics.branch_nlps, statistics.homotopy_steps)
         modeled = {(p.first, p.second) for p in response.solution.modeled_pairs}
         self.assertEqual(modeled, {("actuator_1", "object"), ("actuator_2", "object")})
         self.assertEqual([(p.first, p.second) for p in response.solution.pruned_pairs],

@@ -100,6 +100,10 @@ class PlanAction(unittest.TestCase):
         self.assertEqual(elapsed, sorted(elapsed))
         self.assertLessEqual(elapsed[-1], statistics.wall_time)
         self.assertEqual(feedback[-1].complementarity_residual, 0.0)  # polished
+        self.assertEqual([f.phase for f in feedback],
+                         ["relaxed NLP" if s > 0.0 else "branch NLP" for s in statistics.sigma])
+        self.assertEqual(statistics.relaxed_nlps + statistics.branch_nlps,
+                         statistics.homotopy_steps)
         self.assertAlmostEqual(feedback[-1].objective, statistics.objective, places=12)
         # The same request through the service gives the same answer.
         answer = self.solve(PlanRequest())
@@ -171,6 +175,13 @@ class PlanAction(unittest.TestCase):
         self.assertFalse(cold.solution.statistics.warm_started)
         self.assertLess(warm.solution.statistics.ipopt_iterations,
                         cold.solution.statistics.ipopt_iterations / 2)
+        # The same request again, warm: the last answer already solves it, without an iteration.
+        again = self.solve(moved_target(0.3, warm_start=True))
+        self.assertEqual(again.status, Solution.SUCCESS, again.message)
+        self.assertTrue(again.solution.statistics.warm_started)
+        self.assertEqual(again.solution.statistics.ipopt_iterations, 0)
+        self.assertTrue(again.solution.statistics.certified, again.solution.statistics.certificate)
+        self.assertEqual(again.solution.states, cold.solution.states)
         changed = moved_target(0.0, warm_start=True)
         changed.has_num_elements, changed.num_elements = True, 2
         fallback = self.solve(changed)

@@ -17,7 +17,8 @@ DEBIAN_PACKAGES=(
   rosbash libvisualization-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libtf2-ros-dev liburdfdom-dev libtinyxml2-dev rviz
   ros-std-msgs ros-geometry-msgs python3-rospy python3-std-msgs python3-geometry-msgs
   python3-visualization-msgs python3-nav-msgs python3-tf2-ros python3-rosservice python3-rostopic python3-rosnode
-  coinor-libipopt-dev libsuitesparse-dev libmetis-dev libeigen3-dev libgtest-dev libsiconos-kernel-dev
+  coinor-libipopt-dev coinor-libcbc-dev coinor-libclp-dev libsuitesparse-dev libmetis-dev libeigen3-dev
+  libgtest-dev libsiconos-kernel-dev
   liborocos-kdl-dev libkdl-parser-dev libtrajectory-msgs-dev libsensor-msgs-dev python3-trajectory-msgs
   python3-sensor-msgs ros-robot-state-publisher ros-trajectory-msgs ros-sensor-msgs
   gnuplot-nox python3-matplotlib python3-numpy xvfb imagemagick clang-format

@@ -523,6 +523,29 @@ double NlpAssembly::biactiveDescent(const double* x, const double* multipliers) 
   return descent;
 }
 
+std::vector<FixedPair> NlpAssembly::fixedPairs() const {
+  if (saved_x_lower_.empty()) throw std::logic_error("fixedPairs: no active set is fixed");
+  std::vector<FixedPair> pairs;
+  pairs.reserve(complementarities_.size());
+  for (size_t p = 0; p < complementarities_.size(); ++p) {
+    const Complementarity& comp = complementarities_[p];
+    if (biactive_pairs_[p] || fixed_left_[p]) {
+      pairs.push_back({comp.left, comp.right, true, biactive_pairs_[p]});
+    } else {
+      pairs.push_back({comp.right, comp.left, false, false});
+    }
+  }
+  return pairs;
+}
+
+void NlpAssembly::boundsBeforeActiveSet(double* x_lower, double* x_upper) const {
+  if (saved_x_lower_.empty()) {
+    throw std::logic_error("boundsBeforeActiveSet: no active set is fixed");
+  }
+  std::copy(saved_x_lower_.begin(), saved_x_lower_.end(), x_lower);
+  std::copy(saved_x_upper_.begin(), saved_x_upper_.end(), x_upper);
+}
+
 double NlpAssembly::complementarityResidual(const double* x) const {
   double residual = 0.0;
   for (const Complementarity& comp : complementarities_) {

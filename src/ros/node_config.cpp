@@ -97,6 +97,12 @@ NodeConfig loadNodeConfig(const ros::NodeHandle& node) {
   if (c.robot_all_pairs_up_to < 0) {
     throw std::runtime_error("parameter robot_all_pairs_up_to must be >= 0");
   }
+  std::string mpcc_method = fesd::methodName(c.mpcc_method);
+  node.param("mpcc_method", mpcc_method, mpcc_method);
+  if (!fesd::parseMethod(mpcc_method, c.mpcc_method)) {
+    throw std::runtime_error("parameter mpcc_method must be homotopy or active_set, got '" +
+                             mpcc_method + "'");
+  }
   node.param("linear_solver", c.linear_solver, c.linear_solver);
   if (c.linear_solver != "ldlt" && c.linear_solver != "mumps") {
     throw std::runtime_error("parameter linear_solver must be ldlt or mumps, got '" +

@@ -6,6 +6,7 @@
 #include <ros/node_handle.h>
 
 #include "fesd_trajopt/scene/scene_task.h"
+#include "fesd_trajopt/solver/mpcc_solver.h"
 
 namespace fesd_ros {
 
@@ -44,6 +45,9 @@ struct NodeConfig {
   /// ~linear_solver: the KKT solve behind Ipopt, "ldlt" (ours; solves run in parallel) or
   /// "mumps" (Debian's Ipopt's own; one solve at a time in the process).
   std::string linear_solver = "ldlt";
+  /// ~mpcc_method: "homotopy" (relaxed NLPs to the tolerance, then the active set polished) or
+  /// "active_set" (relaxed NLPs only until a branch NLP solves, then LPECs and branch NLPs).
+  fesd::MpccMethod mpcc_method = fesd::MpccMethod::kHomotopy;
   /// ~solver_threads: requests (services and action goals) solved at once; 0: one per core.
   int solver_threads = 0;
   fesd::TaskLimits limits;

@@ -118,6 +118,7 @@ void PlanActionServer::run(GoalHandle& goal, const std::atomic<bool>& cancel) {
   monitor.on_step = [&](const fesd::HomotopyStep& step) {
     ++feedback.homotopy_step;
     feedback.sigma = step.sigma;
+    feedback.phase = step.sigma > 0.0 ? "relaxed NLP" : "branch NLP";
     feedback.ipopt_iterations += step.iterations;
     feedback.complementarity_residual = step.complementarity_residual;
     feedback.objective = step.objective;

@@ -202,6 +202,14 @@ void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& repo
   s.evaluation_time = report.evaluation_seconds;
   s.polished = report.polished;
   s.b_stationary = report.b_stationary;
+  s.certified = report.certified;
+  s.lpec_value = report.lpec_value;
+  s.lpec_radius = report.lpec_radius;
+  s.certificate = report.certificate;
+  s.relaxed_nlps = report.relaxedNlps();
+  s.branch_nlps = report.branch_nlps;
+  s.lpecs = report.lpecs;
+  s.lpec_time = report.lpec_seconds;
   for (const fesd::HomotopyStep& step : report.history) {
     s.sigma.push_back(step.sigma);
     s.iterations.push_back(step.iterations);

@@ -84,6 +84,7 @@ std::string solveOptions(const fesd_trajopt::PlanRequest& request, const NodeCon
   options.homotopy.complementarity_tolerance = tolerance;
   options.homotopy.wall_time_budget = budget;
   options.homotopy.ipopt.linear_solver = config.linear_solver;
+  options.homotopy.method = config.mpcc_method;
   return "";
 }
 
@@ -324,6 +325,7 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
   solution.statistics.start =
       fesd::startName(outcome.start, robot ? "robot guess" : "push plan", outcome.plan_source);
   solution.statistics.pair_rounds = outcome.pair_rounds;
+  solution.statistics.mpcc_method = fesd::methodName(config_.mpcc_method);
   solution.statistics.warm_started = outcome.warm_started;
   solution.statistics.nlp_variables = outcome.sizes.variables;
   solution.statistics.nlp_constraints = outcome.sizes.constraints;

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "fesd_trajopt/solver/lpec.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 #include "ipopt_session.h"
 
@@ -35,6 +36,21 @@ std::string statusName(SolveStatus status) {
   return "unknown";
 }
 
+std::string methodName(MpccMethod method) {
+  return method == MpccMethod::kActiveSet ? "active_set" : "homotopy";
+}
+
+bool parseMethod(const std::string& name, MpccMethod& method) {
+  if (name == "homotopy") {
+    method = MpccMethod::kHomotopy;
+  } else if (name == "active_set") {
+    method = MpccMethod::kActiveSet;
+  } else {
+    return false;
+  }
+  return true;
+}
+
 std::string describe(const MpccReport& report, double tolerance) {
   std::ostringstream message;
   message << statusName(report.status) << ": " << report.history.size() << " homotopy step(s), "
@@ -42,9 +58,11 @@ std::string describe(const MpccReport& report, double tolerance) {
   if (!report.history.empty()) message << ", last NLP " << report.history.back().ipopt_status;
   message << ", complementarity residual " << report.complementarity_residual << " (tolerance "
           << tolerance << ")"
-          << (report.polished ? report.b_stationary ? ", active set polished (B-stationary)"
-                                                    : ", active set polished"
+          << (report.polished ? report.certified ? ", active set polished (B-stationary, certified)"
+                                : report.b_stationary ? ", active set polished (B-stationary)"
+                                                      : ", active set polished"
                               : "");
+  if (!report.certificate.empty() && !report.certified) message << "; " << report.certificate;
   return message.str();
 }
 
@@ -54,6 +72,15 @@ void MpccReport::addEffort(const MpccReport& other) {
   cpu_seconds += other.cpu_seconds;
   ipopt_seconds += other.ipopt_seconds;
   evaluation_seconds += other.evaluation_seconds;
+  branch_nlps += other.branch_nlps;
+  lpecs += other.lpecs;
+  lpec_seconds += other.lpec_seconds;
+}
+
+int MpccReport::relaxedNlps() const {
+  int relaxed = 0;
+  for (const HomotopyStep& step : history) relaxed += step.sigma > 0.0;
+  return relaxed;
 }
 
 int MpccReport::failedSteps() const {
@@ -137,6 +164,19 @@ void record(MpccReport& report, const HomotopyStep& step, const SolveMonitor* mo
   if (monitor != nullptr && monitor->on_step) monitor->on_step(step);
 }
 
+/// Appends a polishing (branch NLP) solve to the report and counts its effort.
+void recordBranchNlp(MpccReport& report, const NlpOutcome& outcome, double residual, bool solved,
+                     const SolveMonitor* monitor) {
+  record(report,
+         {0.0, outcome.iterations, residual, outcome.objective,
+          IpoptSession::statusName(outcome.status), outcome.wall_seconds, solved},
+         monitor);
+  report.iterations += outcome.iterations;
+  report.evaluation_seconds += outcome.evaluation_seconds;
+  report.ipopt_seconds += outcome.wall_seconds - outcome.evaluation_seconds;
+  ++report.branch_nlps;
+}
+
 /// While the active set of a polished point is fixed: true if the branch with the pairs it left
 /// biactive flipped (HomotopyOptions::branch_check_iterations) offers no lower objective than
 /// `objective` from `polished`. Leaves that branch fixed.
@@ -151,25 +191,137 @@ bool otherBranchKeepsPoint(IpoptSession& session, const HomotopyOptions& options
   check.max_iterations = options.branch_check_iterations;
   const NlpOutcome outcome = session.solve(problem, point, check);
   const bool solved = IpoptSession::converged(outcome.status);
-  record(
-      report,
-      {0.0, outcome.iterations, problem.complementarityResidual(point.x.data()), outcome.objective,
-       IpoptSession::statusName(outcome.status), outcome.wall_seconds, solved},
-      monitor);
-  report.iterations += outcome.iterations;
-  report.evaluation_seconds += outcome.evaluation_seconds;
-  report.ipopt_seconds += outcome.wall_seconds - outcome.evaluation_seconds;
+  recordBranchNlp(report, outcome, problem.complementarityResidual(point.x.data()), solved,
+                  monitor);
   return solved && outcome.objective >= objective - 1e-8 * std::max(1.0, std::fabs(objective));
+}
+
+/// What phase II found at a branch NLP's solution: its last LPEC.
+struct Certification {
+  bool known = false;  ///< an LPEC was solved
+  bool certified = false;
+  double value = std::numeric_limits<double>::quiet_NaN(), radius = 0.0;
+  std::string message;
+};
+
+/// Phase II of the active-set method, at a solved branch NLP whose active set is fixed: LPECs in
+/// a trust region, each certifying B-stationarity or proposing a branch; that branch's NLP,
+/// solved from the point, becomes the point when it lowers the objective, else the radius is
+/// halved; at most `branch_changes` branch NLPs (0: the certificate only). `point` and
+/// `objective` end as the last accepted branch's.
+Certification certifyOrImprove(IpoptSession& session, const HomotopyOptions& options,
+                               RelaxedMpcc& problem, PrimalDualPoint& point, double& objective,
+                               int branch_changes, const IpoptSession::SolveSettings& settings,
+                               const SolveMonitor* monitor, MpccReport& report) {
+  Certification certification;
+  double radius = options.lpec_radius;
+  int halvings = 0, changes = 0;
+  auto lpec = std::make_unique<Lpec>(problem, point.x, point.constraint_multipliers,
+                                     options.lpec_tolerance);
+  while (!(settings.deadline_seconds > 0.0 && steadySeconds() > settings.deadline_seconds)) {
+    LpecBudget budget;
+    budget.bound_only = branch_changes == 0;  // a certificate only: the multipliers' bound
+    if (settings.deadline_seconds > 0.0)
+      budget.seconds = settings.deadline_seconds - steadySeconds();
+    const LpecResult result = lpec->solve(radius, budget);
+    ++report.lpecs;
+    report.lpec_seconds += result.seconds;
+    certification.message = result.message;
+    certification.radius = radius;
+    if (!result.solved) break;
+    certification.known = true;
+    certification.certified = result.certified;
+    certification.value = result.value;
+    if (result.certified || changes >= branch_changes ||
+        !problem.fixGivenActiveSet(result.left_is_zero, point.x.data())) {
+      break;
+    }
+    ++changes;
+    PrimalDualPoint trial = point;
+    if (trial.has_multipliers) {
+      for (int row : problem.complementarityRows()) trial.constraint_multipliers[row] = 0.0;
+    }
+    const NlpOutcome outcome = session.solve(problem, trial, settings);
+    const bool solved = IpoptSession::converged(outcome.status);
+    const double residual = problem.complementarityResidual(trial.x.data());
+    recordBranchNlp(report, outcome, residual, solved, monitor);
+    if (solved && residual <= options.complementarity_tolerance &&
+        outcome.objective < objective - 1e-9 * std::max(1.0, std::fabs(objective))) {
+      point = std::move(trial);
+      objective = outcome.objective;
+      radius = options.lpec_radius;
+      halvings = 0;
+      lpec = std::make_unique<Lpec>(problem, point.x, point.constraint_multipliers,
+                                    options.lpec_tolerance);
+      continue;
+    }
+    if (outcome.status == Ipopt::User_Requested_Stop || ++halvings > options.lpec_radius_halvings) {
+      break;
+    }
+    radius *= 0.5;
+  }
+  return certification;
+}
+
+/// True when `point` (with multipliers) meets the KKT conditions of `problem` as it is bounded now
+/// to `tolerance` (dual residual relative to max(1, |grad f|_inf)): the solution of an unchanged
+/// problem, which Ipopt would push off its bounds and re-centre (12 iterations on the showcase).
+bool solvesAlready(const NlpProblem& problem, const PrimalDualPoint& point, double tolerance) {
+  const int n = problem.numVariables(), m = problem.numConstraints();
+  if (!point.has_multipliers || static_cast<int>(point.x.size()) != n ||
+      static_cast<int>(point.constraint_multipliers.size()) != m ||
+      static_cast<int>(point.bound_lower_multipliers.size()) != n ||
+      static_cast<int>(point.bound_upper_multipliers.size()) != n) {
+    return false;
+  }
+  std::vector<double> x_lower(n), x_upper(n), g_lower(m), g_upper(m), g(m), dual(n);
+  problem.getBounds(x_lower.data(), x_upper.data(), g_lower.data(), g_upper.data());
+  problem.constraints(point.x.data(), g.data());
+  problem.objectiveGradient(point.x.data(), dual.data());
+  double scale = 1.0;
+  for (double d : dual) scale = std::max(scale, std::fabs(d));
+  const SparsityPattern& pattern = problem.jacobianPattern();
+  std::vector<double> values(pattern.nonzeros());
+  problem.jacobian(point.x.data(), values.data());
+  for (int e = 0; e < pattern.nonzeros(); ++e) {
+    dual[pattern.cols[e]] += point.constraint_multipliers[pattern.rows[e]] * values[e];
+  }
+  const auto gap = [](double bound, double value) {
+    return std::fabs(bound) >= 1e19 ? 1.0 : std::fabs(value - bound);  // NlpProblem's infinity
+  };
+  for (int i = 0; i < m; ++i) {
+    const double lambda = point.constraint_multipliers[i];
+    if (g[i] < g_lower[i] - tolerance || g[i] > g_upper[i] + tolerance) return false;
+    // Lagrangian f + lambda^T g: lambda < 0 pushes against the lower bound, > 0 the upper one.
+    if (std::max(-lambda, 0.0) * gap(g_lower[i], g[i]) > tolerance ||
+        std::max(lambda, 0.0) * gap(g_upper[i], g[i]) > tolerance) {
+      return false;
+    }
+  }
+  for (int j = 0; j < n; ++j) {
+    const double x = point.x[j];
+    if (x < x_lower[j] - tolerance || x > x_upper[j] + tolerance) return false;
+    if (x_lower[j] == x_upper[j]) continue;  // a parameter to Ipopt: no condition
+    const double z_lower = point.bound_lower_multipliers[j],
+                 z_upper = point.bound_upper_multipliers[j];
+    if (z_lower < -tolerance || z_upper < -tolerance || z_lower * gap(x_lower[j], x) > tolerance ||
+        z_upper * gap(x_upper[j], x) > tolerance ||
+        std::fabs(dual[j] - z_lower + z_upper) > tolerance * scale) {
+      return false;
+    }
+  }
+  return true;
 }
 
 /// The polishing stage: keeps `report` as it is unless a polished NLP converges (and, if
 /// `require_stationarity`, is B-stationary). Tries the identified active set; after a failed
 /// solve the pairs it left biactive flipped (RelaxedMpcc::flipBiactivePairs), else the most
-/// ambiguous pairs flipped one at a time; `attempts` solves in all.
+/// ambiguous pairs flipped one at a time; `attempts` solves in all. With the active-set method,
+/// a solved branch NLP goes through phase II (certifyOrImprove), whose LPEC judges stationarity.
 void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& problem,
             const PrimalDualPoint& converged, double sigma,
             const IpoptSession::SolveSettings& settings, int attempts, bool require_stationarity,
-            const SolveMonitor* monitor, MpccReport& report) {
+            const SolveMonitor* monitor, MpccReport& report, bool accept_solved_start = false) {
   problem.setBiactiveRule(options.polish_biactive_fraction, sigma);
   // After a failed attempt: its biactive pairs flipped, tried before the next attempt.
   std::vector<bool> biactive_flipped;
@@ -186,25 +338,38 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
     if (point.has_multipliers) {
       for (int row : problem.complementarityRows()) point.constraint_multipliers[row] = 0.0;
     }
-    const NlpOutcome outcome = session.solve(problem, point, settings);
+    // A warm start from the solution of the same problem is that solution: no Ipopt iteration.
+    const NlpOutcome outcome =
+        accept_solved_start && attempt == 0 &&
+                solvesAlready(problem, point, options.solved_start_tolerance)
+            ? NlpOutcome{Ipopt::Solve_Succeeded, 0, problem.objective(point.x.data()), 0.0, 0.0}
+            : session.solve(problem, point, settings);
     const bool solved = IpoptSession::converged(outcome.status);
-    const double descent =
-        solved && point.has_multipliers
-            ? problem.biactiveDescent(point.x.data(), point.constraint_multipliers.data())
-            : std::numeric_limits<double>::infinity();
+    double objective = outcome.objective;
     if (!solved && !flipped_biactive) biactive_flipped = problem.flipBiactivePairs(point.x.data());
-    const double residual = problem.complementarityResidual(point.x.data());
-    record(report,
-           {0.0, outcome.iterations, residual, outcome.objective,
-            IpoptSession::statusName(outcome.status), outcome.wall_seconds, solved},
-           monitor);
-    report.iterations += outcome.iterations;
-    report.evaluation_seconds += outcome.evaluation_seconds;
-    report.ipopt_seconds += outcome.wall_seconds - outcome.evaluation_seconds;
-    bool stationary = descent <= options.stationarity_tolerance;
-    if (solved && !stationary && require_stationarity && options.branch_check_iterations > 0) {
-      stationary = otherBranchKeepsPoint(session, options, problem, point, outcome.objective,
-                                         settings, monitor, report);
+    double residual = problem.complementarityResidual(point.x.data());
+    recordBranchNlp(report, outcome, residual, solved, monitor);
+    // Every solved branch gets its LPEC; only the active-set method follows its branches and
+    // judges stationarity by it (the homotopy's decisions, and so its bits, stay as they were).
+    const bool active_set = options.method == MpccMethod::kActiveSet;
+    Certification certification;
+    if (solved && residual <= options.complementarity_tolerance) {
+      certification =
+          certifyOrImprove(session, options, problem, point, objective,
+                           active_set ? options.max_branch_changes : 0, settings, monitor, report);
+      residual = problem.complementarityResidual(point.x.data());
+    }
+    bool stationary = certification.certified;
+    if (!active_set || !certification.known) {
+      const double descent =
+          solved && point.has_multipliers
+              ? problem.biactiveDescent(point.x.data(), point.constraint_multipliers.data())
+              : std::numeric_limits<double>::infinity();
+      stationary = descent <= options.stationarity_tolerance;
+      if (solved && !stationary && require_stationarity && options.branch_check_iterations > 0) {
+        stationary = otherBranchKeepsPoint(session, options, problem, point, objective, settings,
+                                           monitor, report);
+      }
     }
     problem.releaseActiveSet();
     if (solved && residual <= report.complementarity_residual &&
@@ -212,15 +377,26 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
       report.solution = point.x;
       report.multipliers = {point.bound_lower_multipliers, point.bound_upper_multipliers,
                             point.constraint_multipliers};
-      report.objective = outcome.objective;
+      report.objective = objective;
       report.complementarity_residual = residual;
       report.polished = true;
       report.polish_sigma = problem.relaxation();
       report.b_stationary = stationary;
+      report.certified = certification.certified;
+      report.lpec_value = certification.value;
+      report.lpec_radius = certification.radius;
+      report.certificate = certification.message;
       return;
     }
     if (outcome.status == Ipopt::User_Requested_Stop) return;  // out of time: keep the homotopy's
   }
+}
+
+/// Relaxations at or below this sigma are polished early (phase I of the active-set method).
+double earlyPolishSigma(const HomotopyOptions& options) {
+  return options.method == MpccMethod::kActiveSet
+             ? std::max(options.early_polish_sigma, options.active_set_sigma)
+             : options.early_polish_sigma;
 }
 
 /// A polished point is a solution only if its complementarity holds to the tolerance (fixing a
@@ -273,7 +449,7 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
     problem.setVanishingTermsWeight(options_.vanishing_terms_weight);
     problem.setRelaxation(previous.polish_sigma);
     polish(*session_, options_, problem, point, options_.complementarity_tolerance, settings,
-           options_.polish_attempts, true, monitor_, report);
+           options_.polish_attempts, true, monitor_, report, true);
     if (polishedToTolerance(report, options_)) {
       report.status = SolveStatus::kSuccess;
       report.message = "success: polished from the previous solution's active set, " +
@@ -347,18 +523,25 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     }
     // sigma is a product of rounded factors: 1 * 0.1 * 0.1 exceeds 1e-2 by an ulp.
     if (converged && !smooth && options_.polish_active_set &&
-        sigma <= options_.early_polish_sigma * (1.0 + 1e-9)) {
+        sigma <= earlyPolishSigma(options_) * (1.0 + 1e-9)) {
       // Polish only an active set that two relaxations in a row identify, once: before it has
       // settled, polishing would fix it, and with it the grid's switch elements, too early.
       problem.setBiactiveRule(options_.polish_biactive_fraction, sigma);
       const std::vector<bool> active_set = problem.identifyActiveSet(point.x.data());
-      if (!active_set.empty() && active_set == settled_candidate && active_set != polished_set) {
+      // Phase I of the active-set method projects every relaxation (the LPEC guards the choice).
+      const bool settled =
+          options_.method == MpccMethod::kActiveSet || active_set == settled_candidate;
+      if (!active_set.empty() && settled && active_set != polished_set) {
         polished_set = active_set;
         IpoptSession::SolveSettings polish_settings = settings;
         polish_settings.tolerance = options_.ipopt.tolerance;
         polish_settings.max_iterations = options_.polish_iterations;
+        if (options_.method == MpccMethod::kActiveSet) {
+          problem.setRelaxation(std::min(sigma, options_.branch_nlp_sigma));
+        }
         polish(*session_, options_, problem, point, sigma, polish_settings, 1, true, monitor_,
                report);
+        problem.setRelaxation(sigma);
         if (polishedToTolerance(report, options_)) {
           report.status = SolveStatus::kSuccess;
           break;

@@ -14,6 +14,9 @@
 #include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/planning/accuracy_ladder.h"
 #include "fesd_trajopt/planning/closed_loop.h"
+#include "fesd_trajopt/planning/scene_solver.h"
+#include "fesd_trajopt/solver/lpec.h"
+#include "support/corner_mpcc.h"
 #include "support/hard_cases.h"
 #include "support/scene_tasks.h"
 
@@ -48,9 +51,22 @@ class Digest {
   std::uint64_t hash_ = 14695981039346656037ull;
 };
 
+/// min (x-1)^2 + (y+1)^2, 0 <= x _|_ y >= 0, its branch x = 0 fixed at the origin: an LPEC with a
+/// binary (Cbc and Clp), whose minimiser leaves the branch.
+double lpecValueAtACorner() {
+  fesd_test::CornerMpcc<> corner(-1.0);
+  corner.nlp.finalize();
+  fesd::NlpAssembly& nlp = corner.nlp;
+  const std::vector<double> origin = {0.0, 0.0};
+  nlp.fixGivenActiveSet({true}, origin.data());
+  const fesd::LpecResult result = fesd::Lpec(nlp, origin, {}, 1e-6).solve(1e-3);
+  EXPECT_TRUE(result.solved && result.other_branch) << result.message;
+  return result.value;
+}
+
 /// Hard cases through Ipopt at every step (no active-set Newton), the showcase scene up the
-/// accuracy ladder with its verifications and a push executed with feedback, all with our
-/// LDL^T.
+/// accuracy ladder with its verifications, a push executed with feedback, and the showcase by
+/// the active-set method with its LPECs, all with our LDL^T.
 std::uint64_t probeDigest() {
   Digest digest;
   fesd::SimulationOptions options = hard_cases::fesdOptions(2, 2);
@@ -94,6 +110,16 @@ std::uint64_t probeDigest() {
   EXPECT_EQ(run.status, fesd::SolveStatus::kSuccess) << run.message;
   digest.add(run.executed);
   for (const fesd::Replan& replan : run.replans) digest.add(replan.iterations);
+  fesd::SceneSolveOptions active_set;
+  active_set.ocp.discretization.num_elements = 3;
+  active_set.ocp.homotopy.method = fesd::MpccMethod::kActiveSet;
+  const fesd::SceneOutcome certified =
+      fesd::solveSceneTask(fesd::manipulation_example::task(30), fesd::TaskLimits{}, active_set);
+  EXPECT_TRUE(certified.report.certified) << certified.message;
+  digest.add(certified.trajectory);
+  digest.add(certified.report.iterations);
+  digest.add(certified.report.lpec_value);
+  digest.add(lpecValueAtACorner());
   return digest.value();
 }
 

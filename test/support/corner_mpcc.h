@@ -1,28 +1,49 @@
 #pragma once
 
+#include "fesd_trajopt/function/affine_function.h"
 #include "fesd_trajopt/function/quadratic_function.h"
 #include "fesd_trajopt/nlp/nlp_assembly.h"
 #include "fesd_trajopt/solver/mpcc_solver.h"
 
 namespace fesd_test {
 
-/// min (x-1)^2 + (y-1)^2  s.t.  0 <= x _|_ y >= 0: minimisers (1, 0) and (0, 1), value 1.
+/// min (x-1)^2 + (y-target_y)^2  s.t.  0 <= x _|_ y >= 0. With target_y = 1 (default): minimisers
+/// (1, 0) and (0, 1), value 1; with target_y = -1: the minimiser (1, 0), value 1, and the origin,
+/// the solution of the branch x = 0 (value 2), which is not B-stationary.
 /// `Assembly` may be an NlpAssembly subclass that injects faults.
 template <class Assembly = fesd::NlpAssembly>
 struct CornerMpcc {
   Assembly nlp;
   int x, y;
-  CornerMpcc() {
+  explicit CornerMpcc(double target_y = 1.0) {
     x = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
     y = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
-    nlp.addFunctionTerm(
-        fesd::QuadraticFunction::weightedDistance(Eigen::Vector2d::Ones(), Eigen::Vector2d::Ones()),
-        {x, y}, -1, {{fesd::NlpAssembly::kObjective, 1.0}});
+    nlp.addFunctionTerm(fesd::QuadraticFunction::weightedDistance(Eigen::Vector2d::Ones(),
+                                                                  Eigen::Vector2d(1.0, target_y)),
+                        {x, y}, -1, {{fesd::NlpAssembly::kObjective, 1.0}});
     nlp.addComplementarity({{x, 1.0}}, {{y, 1.0}});
   }
   fesd::MpccReport solve(const fesd::HomotopyOptions& options = {}) {
     nlp.finalize();
     return fesd::MpccSolver(options).solve(nlp, {1.0, 0.5});
+  }
+};
+
+/// min -x  s.t.  y = x,  0 <= x _|_ y >= 0 (not finalized): the origin is the only feasible point,
+/// so it is B-stationary, but on the branch x = 0 the row y = x holds the free side y at 0 too
+/// and no multiplier has the multiplier test's signs (d Lagrangian / dx = -1 - z_y < 0).
+struct OnlyTheOrigin {
+  fesd::NlpAssembly nlp;
+  int x, y;
+  OnlyTheOrigin() {
+    x = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+    y = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+    nlp.addLinear(nlp.addRows(1, 0.0, 0.0), {{y, 1.0}, {x, -1.0}});
+    Eigen::SparseMatrix<double> minus_x(1, 1);
+    minus_x.insert(0, 0) = -1.0;
+    nlp.addFunctionTerm(std::make_shared<fesd::AffineFunction>(minus_x, Eigen::VectorXd::Zero(1)),
+                        {x}, -1, {{fesd::NlpAssembly::kObjective, 1.0}});
+    nlp.addComplementarity({{x, 1.0}}, {{y, 1.0}});
   }
 };
 

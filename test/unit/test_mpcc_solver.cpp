@@ -64,16 +64,9 @@ TEST(MpccSolver, AnEarlyPolishThatSucceedsIsNotPolishedAgain) {
 /// "descent". The other branch (y fixed, x free) keeps the point, which confirms it.
 TEST(MpccSolver, TheOtherBranchConfirmsAPointTheMultipliersCannot) {
   for (const int check : {30, 0}) {
-    fesd::NlpAssembly nlp;
-    const int x = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
-    const int y = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
-    const int row = nlp.addRows(1, 0.0, 0.0);
-    nlp.addLinear(row, {{y, 1.0}, {x, -1.0}});
-    Eigen::SparseMatrix<double> minus_x(1, 1);
-    minus_x.insert(0, 0) = -1.0;
-    nlp.addFunctionTerm(std::make_shared<fesd::AffineFunction>(minus_x, Eigen::VectorXd::Zero(1)),
-                        {x}, -1, {{fesd::NlpAssembly::kObjective, 1.0}});
-    nlp.addComplementarity({{x, 1.0}}, {{y, 1.0}});
+    fesd_test::OnlyTheOrigin problem;
+    fesd::NlpAssembly& nlp = problem.nlp;
+    const int x = problem.x, y = problem.y;
     // A second pair, u = 1 _|_ v = 0, gives the scale on which y counts as zero.
     const int u = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
     const int v = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
@@ -192,3 +185,71 @@ TEST(MpccSolver, RejectsUnknownIpoptOptions) {
 }
 
 }  // namespace
+
+/// min (x-1)^2 + (y+1)^2  s.t.  0 <= x _|_ y >= 0, warm-started at the origin: its active set
+/// (x = 0, no pair left biactive) is polished to the origin itself, objective 2, which is not
+/// B-stationary. The LPEC
+/// there proposes the branch y = 0, whose NLP ends at (1, 0), objective 1, where the next LPEC
+/// certifies it: two branch NLPs and two LPECs, no relaxed NLP.
+TEST(MpccSolver, PhaseTwoLeavesABranchThatIsNotBStationaryForABetterOne) {
+  CornerMpcc corner(-1.0);
+  corner.nlp.finalize();
+  fesd::NlpAssembly& nlp = corner.nlp;
+  const int x = corner.x, y = corner.y;
+  fesd::MpccReport origin;
+  origin.solution = {0.0, 0.0};
+  fesd::HomotopyOptions options;
+  options.method = fesd::MpccMethod::kActiveSet;
+  options.polish_biactive_fraction = 0.0;  // the origin's pair gets a fixed side, not both free
+  const fesd::MpccReport report = fesd::MpccSolver(options).solve(nlp, origin, 1e-2);
+  ASSERT_EQ(report.status, fesd::SolveStatus::kSuccess) << report.message;
+  EXPECT_TRUE(report.certified) << report.message;
+  EXPECT_TRUE(report.b_stationary);
+  EXPECT_EQ(report.relaxedNlps(), 0);
+  EXPECT_EQ(report.branch_nlps, 2);
+  EXPECT_EQ(report.lpecs, 2);
+  EXPECT_NEAR(report.objective, 1.0, 1e-9);
+  EXPECT_NEAR(report.solution[x], 1.0, 1e-8);
+  EXPECT_EQ(report.solution[y], 0.0);
+  EXPECT_NEAR(report.lpec_value, 0.0, 1e-12);
+
+  // The homotopy's method rejects the origin by its multipliers and its other branch, and goes
+  // on with relaxed NLPs; its answer carries the LPEC's certificate too.
+  options.method = fesd::MpccMethod::kHomotopy;
+  const fesd::MpccReport homotopy = fesd::MpccSolver(options).solve(nlp, origin, 1e-2);
+  ASSERT_EQ(homotopy.status, fesd::SolveStatus::kSuccess) << homotopy.message;
+  EXPECT_TRUE(homotopy.certified) << homotopy.message;
+  EXPECT_GT(homotopy.relaxedNlps(), 0);
+  EXPECT_NEAR(homotopy.objective, 1.0, 1e-8);
+}
+
+/// A warm start from the solution of the same problem is that solution, without an Ipopt iteration;
+/// from the solution of a changed one (its target moved), Ipopt polishes as before.
+TEST(MpccSolver, AWarmStartThatAlreadySolvesTheProblemTakesNoIteration) {
+  CornerMpcc corner;
+  const fesd::MpccReport cold = corner.solve();
+  ASSERT_EQ(cold.status, fesd::SolveStatus::kSuccess) << cold.message;
+  fesd::MpccSolver solver;
+  const fesd::MpccReport again = solver.solve(corner.nlp, cold, 1e-2);
+  ASSERT_EQ(again.status, fesd::SolveStatus::kSuccess) << again.message;
+  EXPECT_EQ(again.iterations, 0);
+  EXPECT_EQ(again.solution, cold.solution);
+  EXPECT_TRUE(again.certified) << again.certificate;
+  fesd::MpccReport moved = cold;
+  moved.solution[corner.x] += 1e-3;  // no longer a KKT point of its branch
+  const fesd::MpccReport polished = solver.solve(corner.nlp, moved, 1e-2);
+  ASSERT_EQ(polished.status, fesd::SolveStatus::kSuccess) << polished.message;
+  EXPECT_GT(polished.iterations, 0);
+  EXPECT_NEAR(polished.solution[corner.x], 1.0, 1e-8);
+}
+
+TEST(MpccSolver, MethodsHaveNames) {
+  fesd::MpccMethod method = fesd::MpccMethod::kHomotopy;
+  ASSERT_TRUE(fesd::parseMethod("active_set", method));
+  EXPECT_EQ(method, fesd::MpccMethod::kActiveSet);
+  EXPECT_EQ(fesd::methodName(method), "active_set");
+  ASSERT_TRUE(fesd::parseMethod("homotopy", method));
+  EXPECT_EQ(fesd::methodName(method), "homotopy");
+  EXPECT_FALSE(fesd::parseMethod("newton", method));
+  EXPECT_EQ(method, fesd::MpccMethod::kHomotopy);
+}

@@ -36,6 +36,37 @@ TEST(NlpAssembly, BiactiveDescentDetectsTheWrongFixedSide) {
   EXPECT_THROW(nlp.biactiveDescent(minimiser.data(), no_multipliers.data()), std::logic_error);
 }
 
+TEST(NlpAssembly, FixedPairsNameEachPairsZeroSideAndTheBoundsBeforeTheActiveSet) {
+  fesd::NlpAssembly nlp;
+  const int x = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+  const int y = nlp.addVariables(1, 0.0, 5.0);
+  const int u = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+  const int v = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+  nlp.addComplementarity({{x, 1.0}}, {{y, 2.0}});
+  nlp.addComplementarity({{u, 1.0}}, {{v, 1.0}});
+  nlp.finalize();
+  EXPECT_THROW(nlp.fixedPairs(), std::logic_error);
+  const std::vector<double> point{1.0, 0.0, 0.0, 3.0};
+  ASSERT_TRUE(nlp.fixGivenActiveSet({false, true}, point.data()));
+  const std::vector<fesd::FixedPair> pairs = nlp.fixedPairs();
+  ASSERT_EQ(pairs.size(), 2u);
+  EXPECT_FALSE(pairs[0].zero_side_is_left);  // y is fixed: the right side
+  EXPECT_EQ(pairs[0].zero_side[0].variable, y);
+  EXPECT_EQ(pairs[0].zero_side[0].coefficient, 2.0);
+  EXPECT_EQ(pairs[0].other_side[0].variable, x);
+  EXPECT_TRUE(pairs[1].zero_side_is_left);
+  EXPECT_EQ(pairs[1].zero_side[0].variable, u);
+  EXPECT_FALSE(pairs[0].biactive || pairs[1].biactive);
+  std::vector<double> lower(4), upper(4);
+  nlp.boundsBeforeActiveSet(lower.data(), upper.data());
+  EXPECT_EQ(upper[y], 5.0);  // fixed to 0 now, 5 in the MPCC
+  EXPECT_EQ(nlp.variableUpper(y), 0.0);
+  EXPECT_EQ(upper[u], fesd::NlpAssembly::kInfinity);
+  EXPECT_EQ(nlp.variableUpper(u), 0.0);
+  nlp.releaseActiveSet();
+  EXPECT_THROW(nlp.boundsBeforeActiveSet(lower.data(), upper.data()), std::logic_error);
+}
+
 constexpr double kInf = fesd::NlpAssembly::kInfinity;
 
 /// (d + a) _|_ b with d fixed data, a and b free and nonnegative; no objective needed.

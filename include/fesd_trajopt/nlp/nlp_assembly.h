@@ -11,13 +11,6 @@
 
 namespace fesd {
 
-/// One variable and its coefficient in a linear expression.
-struct LinearTerm {
-  int variable;
-  double coefficient;
-};
-using LinearExpression = std::vector<LinearTerm>;
-
 /// Maps matrix coordinates to slots of a value array, merging repeated coordinates.
 class SlotMap {
  public:
@@ -122,6 +115,8 @@ class NlpAssembly : public RelaxedMpcc {
   std::vector<bool> flipBiactivePairs(const double* x) const override;
   void releaseActiveSet() override;
   double biactiveDescent(const double* x, const double* multipliers) const override;
+  std::vector<FixedPair> fixedPairs() const override;
+  void boundsBeforeActiveSet(double* x_lower, double* x_upper) const override;
 
  private:
   struct LinearEntry {

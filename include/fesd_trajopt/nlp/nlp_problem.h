@@ -6,6 +6,21 @@
 
 namespace fesd {
 
+/// One variable and its coefficient in a linear expression.
+struct LinearTerm {
+  int variable;
+  double coefficient;
+};
+using LinearExpression = std::vector<LinearTerm>;
+
+/// A complementarity pair under a fixed active set: the side fixed to zero and the other one,
+/// or, for a pair left biactive, both sides free (`zero_side` is then its left side).
+struct FixedPair {
+  LinearExpression zero_side, other_side;
+  bool zero_side_is_left = true;
+  bool biactive = false;
+};
+
 /// A sparse nonlinear program  min f(x)  s.t.  g_l <= g(x) <= g_u,  x_l <= x <= x_u,
 /// with exact first and second derivatives. Solver-agnostic: the Ipopt adapter reads it.
 class NlpProblem {
@@ -71,6 +86,10 @@ class RelaxedMpcc : public NlpProblem {
   virtual std::vector<bool> flipBiactivePairs(const double* x) const = 0;
   /// Undoes fixActiveSet.
   virtual void releaseActiveSet() = 0;
+  /// While an active set is fixed: every pair's sides as it fixes them (the LPEC's data).
+  virtual std::vector<FixedPair> fixedPairs() const = 0;
+  /// While an active set is fixed: the variable bounds of the MPCC, before it was fixed.
+  virtual void boundsBeforeActiveSet(double* x_lower, double* x_upper) const = 0;
   /// While an active set is fixed: how far a solution (x and its constraint multipliers, for the
   /// Lagrangian f + multipliers^T g) is from B-stationarity of the MPCC. At a pair whose free
   /// side vanishes too (biactive), releasing the fixed side is feasible; its variables must not

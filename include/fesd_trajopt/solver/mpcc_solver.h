@@ -49,6 +49,20 @@ struct IpoptSettings {
   std::map<std::string, std::string> extra_options;
 };
 
+/// How the MPCC is solved after its relaxations have found an active set.
+enum class MpccMethod {
+  /// The homotopy to the complementarity tolerance, its active set polished at the end (or
+  /// early), B-stationarity judged by the polished point's multipliers.
+  kHomotopy,
+  /// After MPECopt (Nurkanovic & Leyffer 2025): relaxed NLPs only until an active set's branch
+  /// NLP (BNLP) solves (phase I), then at each BNLP solution an LPEC in a trust region that
+  /// certifies B-stationarity or gives the next branch (phase II).
+  kActiveSet,
+};
+std::string methodName(MpccMethod method);
+/// "homotopy" or "active_set"; false for another name.
+bool parseMethod(const std::string& name, MpccMethod& method);
+
 /// The Scholtes homotopy: solve the NLP with 0 <= a, 0 <= b, a*b <= sigma for
 /// sigma = sigma0, kappa*sigma0, ... until the complementarity residual is below tolerance.
 struct HomotopyOptions {
@@ -130,6 +144,30 @@ struct HomotopyOptions {
   /// relaxed NLP, if that one's complementarity residual is at most this: polishing needs the
   /// right active set, not a tiny sigma.
   double polish_rescue_residual = 1e-4;
+  /// A warm start whose point meets the KKT conditions of the previous active set's branch NLP
+  /// to this (primal, bound complementarity; dual relative to max(1, |grad f|_inf)) is accepted
+  /// without an Ipopt iteration: an unchanged request answers with its previous solution.
+  double solved_start_tolerance = 1e-8;
+  MpccMethod method = MpccMethod::kHomotopy;
+  /// Active-set method: a converged relaxation at sigma <= this is projected onto its active set
+  /// and that branch NLP solved (phase I ends when one solves and its LPEC certifies it).
+  double active_set_sigma = 1e-2;
+  /// ... and its branch NLP keeps the vanishing terms (FESD's step regulariser) and relaxed rows
+  /// of this relaxation, or of the projected one if smaller: the weight the homotopy's own
+  /// polishing has where its active set settles (sigma = 1e-3 on the showcase), so that both
+  /// methods end on the same objective when they find the same branch.
+  double branch_nlp_sigma = 1e-3;
+  /// The LPEC's trust region (infinity norm of the step, in the NLP's variables: MPECopt's 1e-3);
+  /// halved after a branch it proposes brings no decrease, at most lpec_radius_halvings times.
+  double lpec_radius = 1e-3;
+  int lpec_radius_halvings = 3;
+  /// Branch NLPs phase II may solve after the first one of a polishing stage.
+  int max_branch_changes = 5;
+  /// An LPEC value above -lpec_tolerance * radius * max(1, |grad f|_inf) counts as zero: the
+  /// multipliers' bound sums the branch NLP's dual residuals over all variables (-1.6e-6 per
+  /// unit radius on the showcase, solved to Ipopt's 1e-10); a branch that offers real descent
+  /// offers a contact force's worth.
+  double lpec_tolerance = 1e-4;
   IpoptSettings ipopt;
 };
 
@@ -199,12 +237,23 @@ struct MpccReport {
   /// A polished solution is B-stationary: no biactive pair offers descent (always true for
   /// early and warm-start polishing, which require it).
   bool b_stationary = false;
+  /// The active-set method's certificate: the last LPEC at the solution found no descent on any
+  /// branch within its radius (b_stationary then holds too).
+  bool certified = false;
+  /// The last LPEC's optimal value (0 when certified; NaN when none ran).
+  double lpec_value = std::numeric_limits<double>::quiet_NaN();
+  double lpec_radius = 0.0;  ///< its trust region's radius
+  std::string certificate;   ///< the last LPEC in words ("" if none ran)
+  int branch_nlps = 0;       ///< branch NLPs solved (polishing solves and phase II's)
+  int lpecs = 0;             ///< LPECs solved
+  double lpec_seconds = 0.0;
   double wall_seconds = 0.0, cpu_seconds = 0.0;
   double ipopt_seconds = 0.0;  ///< wall time inside Ipopt itself (solve time minus evaluations)
   double evaluation_seconds = 0.0;  ///< wall time inside our function evaluations
 
   bool converged() const { return status == SolveStatus::kSuccess; }
   int failedSteps() const;  ///< relaxed (or polishing) NLPs that Ipopt did not solve
+  int relaxedNlps() const;  ///< relaxed NLPs in the history (sigma > 0)
   void addEffort(const MpccReport& other);   ///< adds another solve's iterations and times
   void accumulate(const MpccReport& other);  ///< addEffort, and the worse residual
 };
