@@ -98,6 +98,13 @@ fesd::SimulationOptions steppingArguments(const Arguments& args, bool refine_by_
   return options;
 }
 
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t middle = values.size() / 2;
+  return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
+}
+
 void applyHomotopyArguments(const Arguments& args, fesd::HomotopyOptions& options) {
   options.sigma_initial = args.number("sigma0", options.sigma_initial);
   options.sigma_reduction = args.number("kappa", options.sigma_reduction);

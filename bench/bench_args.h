@@ -51,4 +51,7 @@ fesd::SimulationOptions steppingArguments(const Arguments& args, bool refine_by_
 /// --mu-strategy, --cold-mu-strategy, --ipopt-print-level and --ipopt=name:value,name:value.
 void applyHomotopyArguments(const Arguments& args, fesd::HomotopyOptions& options);
 
+/// The median (of an even count, the mean of the middle two); 0 for none.
+double median(std::vector<double> values);
+
 }  // namespace fesd_bench

@@ -27,14 +27,8 @@ struct Case {
 
 struct Totals {
   int cases = 0, successes = 0, certified = 0;
-  std::vector<int> iterations;
+  std::vector<double> iterations;
 };
-
-int median(std::vector<int> values) {
-  if (values.empty()) return 0;
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
 
 }  // namespace
 
@@ -99,7 +93,7 @@ int mpccMethods(const Arguments& args) {
   }
   for (const auto& [name, t] : totals) {
     std::printf(
-        "# %s: %d of %d SUCCESS (%d certified); Ipopt iterations median %d, largest %d\n",
+        "# %s: %d of %d SUCCESS (%d certified); Ipopt iterations median %.1f, largest %.0f\n",
         name.c_str(), t.successes, t.cases, t.certified, median(t.iterations),
         t.iterations.empty() ? 0 : *std::max_element(t.iterations.begin(), t.iterations.end()));
   }

@@ -41,13 +41,6 @@ std::string stepHistory(const fesd::MpccReport& report) {
   return text;
 }
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const size_t middle = values.size() / 2;
-  return values.size() % 2 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
-}
-
 /// The node's default request for each scene (verified, the accuracy ladder, the node's budget
 /// and pairs): status, seconds, iterations, rungs, errors; CSV, then a summary against the
 /// node's default request of the default scene in the same run.

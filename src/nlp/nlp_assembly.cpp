@@ -165,12 +165,6 @@ void NlpAssembly::getBounds(double* x_lower, double* x_upper, double* g_lower,
   std::copy(g_upper_.begin(), g_upper_.end(), g_upper);
 }
 
-double NlpAssembly::evaluateLinear(const LinearExpression& expression, const double* x) {
-  double value = 0.0;
-  for (const LinearTerm& t : expression) value += t.coefficient * x[t.variable];
-  return value;
-}
-
 namespace {
 /// Gathers a function term's argument vector from the NLP variables.
 const double* gather(const std::vector<int>& inputs, const double* x, std::vector<double>& z) {
@@ -219,7 +213,7 @@ void NlpAssembly::constraints(const double* x, double* g) const {
   std::fill(g, g + numConstraints(), 0.0);
   for (const LinearEntry& entry : linear_) g[entry.row] += entry.coefficient * x[entry.variable];
   for (const Complementarity& comp : complementarities_) {
-    g[comp.row] += evaluateLinear(comp.left, x) * evaluateLinear(comp.right, x);
+    g[comp.row] += linearValue(comp.left, x) * linearValue(comp.right, x);
   }
   for (const FunctionTerm& term : terms_) {
     const int outputs = term.function->outputSize();
@@ -243,7 +237,7 @@ void NlpAssembly::jacobian(const double* x, double* values) const {
   std::fill(values, values + jacobian_slots_.pattern().nonzeros(), 0.0);
   for (const LinearEntry& entry : linear_) values[entry.slot] += entry.coefficient;
   for (const Complementarity& comp : complementarities_) {
-    const double left = evaluateLinear(comp.left, x), right = evaluateLinear(comp.right, x);
+    const double left = linearValue(comp.left, x), right = linearValue(comp.right, x);
     for (size_t i = 0; i < comp.left.size(); ++i) {
       values[comp.left_slots[i]] += comp.left[i].coefficient * right;
     }
@@ -371,8 +365,8 @@ NlpAssembly::ActiveSetChoice NlpAssembly::chooseActiveSet(const double* x) const
       choice.valid = false;
       return choice;
     }
-    const double left = comp.left_weight * evaluateLinear(comp.left, x);
-    const double right = comp.right_weight * evaluateLinear(comp.right, x);
+    const double left = comp.left_weight * linearValue(comp.left, x);
+    const double right = comp.right_weight * linearValue(comp.right, x);
     // Both sides far below the size sqrt(left_weight right_weight sigma) that each side of a
     // product at the relaxation's bound would have: the pair is biactive, not complementary.
     const double biactive_size =
@@ -467,8 +461,8 @@ std::vector<bool> NlpAssembly::flipBiactivePairs(const double* x) const {
   for (size_t p = 0; p < complementarities_.size(); ++p) {
     const Complementarity& comp = complementarities_[p];
     if (biactive_pairs_[p]) continue;  // no side fixed, nothing to flip
-    free_sides[p] = fixed_left_[p] ? comp.right_weight * evaluateLinear(comp.right, x)
-                                   : comp.left_weight * evaluateLinear(comp.left, x);
+    free_sides[p] = fixed_left_[p] ? comp.right_weight * linearValue(comp.right, x)
+                                   : comp.left_weight * linearValue(comp.left, x);
     largest = std::max(largest, std::fabs(free_sides[p]));
   }
   std::vector<bool> flipped = fixed_left_;
@@ -495,17 +489,11 @@ void NlpAssembly::releaseActiveSet() {
 
 double NlpAssembly::biactiveDescent(const double* x, const double* multipliers) const {
   if (saved_x_lower_.empty()) throw std::logic_error("biactiveDescent: no active set is fixed");
-  const int n = numVariables();
-  std::vector<double> gradient(n), jacobian_values(jacobian_slots_.pattern().nonzeros());
+  std::vector<double> gradient(numVariables());
   objectiveGradient(x, gradient.data());
   double scale = 1.0;
   for (double g : gradient) scale = std::max(scale, std::fabs(g));
-  std::vector<double> lagrangian_gradient = gradient;
-  jacobian(x, jacobian_values.data());
-  const SparsityPattern& pattern = jacobian_slots_.pattern();
-  for (size_t e = 0; e < jacobian_values.size(); ++e) {
-    lagrangian_gradient[pattern.cols[e]] += multipliers[pattern.rows[e]] * jacobian_values[e];
-  }
+  const std::vector<double> lagrangian_gradient = lagrangianGradient(*this, x, multipliers);
   double descent = 0.0;
   for (size_t p = 0; p < complementarities_.size(); ++p) {
     // A pair left biactive has both sides free: Ipopt's bound multipliers are its signs.
@@ -513,7 +501,7 @@ double NlpAssembly::biactiveDescent(const double* x, const double* multipliers) 
     const Complementarity& comp = complementarities_[p];
     const LinearExpression& fixed = fixed_left_[p] ? comp.left : comp.right;
     const LinearExpression& free = fixed_left_[p] ? comp.right : comp.left;
-    if (evaluateLinear(free, x) > kNegligibleFixedValue) continue;
+    if (linearValue(free, x) > kNegligibleFixedValue) continue;
     for (const LinearTerm& t : fixed) {
       // Data stays fixed; a side fixed by the active set was released from saved bounds [0, .].
       if (saved_x_lower_[t.variable] == saved_x_upper_[t.variable]) continue;
@@ -550,7 +538,7 @@ double NlpAssembly::complementarityResidual(const double* x) const {
   double residual = 0.0;
   for (const Complementarity& comp : complementarities_) {
     residual =
-        std::max(residual, std::fabs(evaluateLinear(comp.left, x) * evaluateLinear(comp.right, x)));
+        std::max(residual, std::fabs(linearValue(comp.left, x) * linearValue(comp.right, x)));
   }
   return residual;
 }

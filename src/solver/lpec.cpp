@@ -21,12 +21,6 @@ constexpr double kInfiniteBound = 1e19;
 /// A zero side's value at x of at most this counts as zero (data fixed near zero, rounding).
 constexpr double kZeroSide = 1e-9;
 
-double evaluate(const LinearExpression& side, const std::vector<double>& x) {
-  double value = 0.0;
-  for (const LinearTerm& t : side) value += t.coefficient * x[t.variable];
-  return value;
-}
-
 /// The range of side^T d over the box [lower, upper].
 std::pair<double, double> range(const LinearExpression& side, const std::vector<double>& lower,
                                 const std::vector<double>& upper) {
@@ -116,11 +110,11 @@ Lpec::Lpec(const RelaxedMpcc& problem, const std::vector<double>& x,
   // The product rows are replaced by the pairs' disjunctions; rows without bounds say nothing.
   std::vector<bool> product(m, false);
   for (int row : problem.complementarityRows()) product[row] = true;
-  row_of_.assign(m, -1);
+  std::vector<int> row_of(m, -1);  // the LP row of each constraint row kept (-1: dropped)
   for (int i = 0; i < m; ++i) {
     const bool bounded = g_lower[i] > -kInfiniteBound || g_upper[i] < kInfiniteBound;
     if (product[i] || !bounded) continue;
-    row_of_[i] = kept_rows_++;
+    row_of[i] = static_cast<int>(row_lower_.size());
     if (has_multipliers_) row_multipliers_.push_back(multipliers[i]);
     // d = 0 stays feasible where x meets a row only to Ipopt's tolerance.
     row_lower_.push_back(g_lower[i] > -kInfiniteBound ? std::min(g_lower[i] - g[i], 0.0)
@@ -132,8 +126,8 @@ Lpec::Lpec(const RelaxedMpcc& problem, const std::vector<double>& x,
   std::vector<double> values(pattern.nonzeros());
   problem.jacobian(x.data(), values.data());
   for (int e = 0; e < pattern.nonzeros(); ++e) {
-    if (row_of_[pattern.rows[e]] < 0 || values[e] == 0.0) continue;
-    jacobian_.add(row_of_[pattern.rows[e]], pattern.cols[e]);
+    if (row_of[pattern.rows[e]] < 0 || values[e] == 0.0) continue;
+    jacobian_.add(row_of[pattern.rows[e]], pattern.cols[e]);
     jacobian_values_.push_back(values[e]);
   }
 }
@@ -143,7 +137,8 @@ double Lpec::dualBound(const std::vector<double>& low, const std::vector<double>
   if (!has_multipliers_) return -std::numeric_limits<double>::infinity();
   // grad f^T d = r^T d - lambda^T J d with the reduced costs r = grad f + J^T lambda; each term
   // bounded over the box, each row's J d over its bounds and what the trust region lets it reach.
-  std::vector<double> reduced = gradient_, reach(kept_rows_, 0.0);
+  const int kept_rows = static_cast<int>(row_lower_.size());
+  std::vector<double> reduced = gradient_, reach(kept_rows, 0.0);
   for (int e = 0; e < jacobian_.nonzeros(); ++e) {
     reduced[jacobian_.cols[e]] += row_multipliers_[jacobian_.rows[e]] * jacobian_values_[e];
     reach[jacobian_.rows[e]] += radius * std::fabs(jacobian_values_[e]);
@@ -152,7 +147,7 @@ double Lpec::dualBound(const std::vector<double>& low, const std::vector<double>
   for (size_t j = 0; j < reduced.size(); ++j) {
     bound += std::min(reduced[j] * low[j], reduced[j] * high[j]);
   }
-  for (int i = 0; i < kept_rows_; ++i) {
+  for (int i = 0; i < kept_rows; ++i) {
     const double lower = std::max(row_lower_[i], -reach[i]),
                  upper = std::min(row_upper_[i], reach[i]);
     bound += std::min(-row_multipliers_[i] * lower, -row_multipliers_[i] * upper);
@@ -181,7 +176,7 @@ LpecResult Lpec::solve(double radius, const LpecBudget& budget) const {
   std::vector<bool> released(n, false);
   for (int p = 0; p < pairs; ++p) {
     const FixedPair& pair = pairs_[p];
-    const double other = evaluate(pair.other_side, x_);
+    const double other = linearValue(pair.other_side, x_.data());
     if (pair.biactive || other + range(pair.other_side, low, high).first <= kZeroSide) {
       undecided[p] = true;
       for (const LinearTerm& t : pair.zero_side) released[t.variable] = true;
@@ -216,7 +211,7 @@ LpecResult Lpec::solve(double radius, const LpecBudget& budget) const {
     return result;
   }
   LpRows lp;
-  for (int i = 0; i < kept_rows_; ++i) lp.add(row_lower_[i], row_upper_[i]);
+  for (size_t i = 0; i < row_lower_.size(); ++i) lp.add(row_lower_[i], row_upper_[i]);
   for (int e = 0; e < jacobian_.nonzeros(); ++e) {
     lp.entry(jacobian_.rows[e], jacobian_.cols[e], jacobian_values_[e]);
   }
@@ -224,7 +219,8 @@ LpecResult Lpec::solve(double radius, const LpecBudget& budget) const {
   int binaries = 0;
   for (int p = 0; p < pairs; ++p) {
     const FixedPair& pair = pairs_[p];
-    const double zero = evaluate(pair.zero_side, x_), other = evaluate(pair.other_side, x_);
+    const double zero = linearValue(pair.zero_side, x_.data()),
+                 other = linearValue(pair.other_side, x_.data());
     if (!undecided[p]) {
       // Decided: the zero side stays zero even where a variable of it was released elsewhere.
       bool touches_released = false;

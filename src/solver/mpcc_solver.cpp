@@ -274,24 +274,20 @@ bool solvesAlready(const NlpProblem& problem, const PrimalDualPoint& point, doub
       static_cast<int>(point.bound_upper_multipliers.size()) != n) {
     return false;
   }
-  std::vector<double> x_lower(n), x_upper(n), g_lower(m), g_upper(m), g(m), dual(n);
+  if (constraintViolation(problem, point.x) > tolerance) return false;
+  std::vector<double> x_lower(n), x_upper(n), g_lower(m), g_upper(m), g(m), gradient(n);
   problem.getBounds(x_lower.data(), x_upper.data(), g_lower.data(), g_upper.data());
   problem.constraints(point.x.data(), g.data());
-  problem.objectiveGradient(point.x.data(), dual.data());
+  problem.objectiveGradient(point.x.data(), gradient.data());
   double scale = 1.0;
-  for (double d : dual) scale = std::max(scale, std::fabs(d));
-  const SparsityPattern& pattern = problem.jacobianPattern();
-  std::vector<double> values(pattern.nonzeros());
-  problem.jacobian(point.x.data(), values.data());
-  for (int e = 0; e < pattern.nonzeros(); ++e) {
-    dual[pattern.cols[e]] += point.constraint_multipliers[pattern.rows[e]] * values[e];
-  }
+  for (double d : gradient) scale = std::max(scale, std::fabs(d));
+  const std::vector<double> dual =
+      lagrangianGradient(problem, point.x.data(), point.constraint_multipliers.data());
   const auto gap = [](double bound, double value) {
     return std::fabs(bound) >= 1e19 ? 1.0 : std::fabs(value - bound);  // NlpProblem's infinity
   };
   for (int i = 0; i < m; ++i) {
     const double lambda = point.constraint_multipliers[i];
-    if (g[i] < g_lower[i] - tolerance || g[i] > g_upper[i] + tolerance) return false;
     // Lagrangian f + lambda^T g: lambda < 0 pushes against the lower bound, > 0 the upper one.
     if (std::max(-lambda, 0.0) * gap(g_lower[i], g[i]) > tolerance ||
         std::max(lambda, 0.0) * gap(g_upper[i], g[i]) > tolerance) {
@@ -300,7 +296,6 @@ bool solvesAlready(const NlpProblem& problem, const PrimalDualPoint& point, doub
   }
   for (int j = 0; j < n; ++j) {
     const double x = point.x[j];
-    if (x < x_lower[j] - tolerance || x > x_upper[j] + tolerance) return false;
     if (x_lower[j] == x_upper[j]) continue;  // a parameter to Ipopt: no condition
     const double z_lower = point.bound_lower_multipliers[j],
                  z_upper = point.bound_upper_multipliers[j];

@@ -150,7 +150,6 @@ class NlpAssembly : public RelaxedMpcc {
     std::vector<bool> biactive;     ///< both sides vanish (setBiactiveRule): neither is fixed
   };
   ActiveSetChoice chooseActiveSet(const double* x) const;
-  static double evaluateLinear(const LinearExpression& expression, const double* x);
   void checkNotFinalized() const;
   void checkFinalized() const;
   /// Weights w_r = sum_t coefficient_t * multiplier(row_t + r) of one term's outputs.

@@ -13,6 +13,13 @@ struct LinearTerm {
 };
 using LinearExpression = std::vector<LinearTerm>;
 
+/// The expression's value at x.
+inline double linearValue(const LinearExpression& expression, const double* x) {
+  double value = 0.0;
+  for (const LinearTerm& t : expression) value += t.coefficient * x[t.variable];
+  return value;
+}
+
 /// A complementarity pair under a fixed active set: the side fixed to zero and the other one,
 /// or, for a pair left biactive, both sides free (`zero_side` is then its left side).
 struct FixedPair {
@@ -43,6 +50,20 @@ class NlpProblem {
   virtual void hessian(const double* x, double objective_factor, const double* multipliers,
                        double* values) const = 0;
 };
+
+/// grad f(x) + J(x)^T multipliers: the gradient of the Lagrangian f + multipliers^T g.
+inline std::vector<double> lagrangianGradient(const NlpProblem& problem, const double* x,
+                                              const double* multipliers) {
+  std::vector<double> gradient(problem.numVariables());
+  problem.objectiveGradient(x, gradient.data());
+  const SparsityPattern& pattern = problem.jacobianPattern();
+  std::vector<double> values(pattern.nonzeros());
+  problem.jacobian(x, values.data());
+  for (int e = 0; e < pattern.nonzeros(); ++e) {
+    gradient[pattern.cols[e]] += multipliers[pattern.rows[e]] * values[e];
+  }
+  return gradient;
+}
 
 /// An MPCC relaxed by a parameter sigma >= 0 (sigma = 0 is the MPCC itself).
 class RelaxedMpcc : public NlpProblem {

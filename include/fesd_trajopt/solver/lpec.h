@@ -62,8 +62,6 @@ class Lpec {
       released_upper_;
   SparsityPattern jacobian_;  ///< of the rows other than the complementarity products
   std::vector<double> jacobian_values_;
-  std::vector<int> row_of_;  ///< the LP row of each constraint row kept (-1: dropped)
-  int kept_rows_ = 0;
   std::vector<FixedPair> pairs_;
   bool has_multipliers_ = false;
   std::vector<double> row_multipliers_;  ///< per kept row
