@@ -1,5 +1,7 @@
 #include "fesd_trajopt/scene/collision_centres.h"
 
+#include <cstring>
+
 namespace fesd {
 
 CentreEvaluator::CentreEvaluator(std::shared_ptr<const KinematicModel> robot, int dimension)
@@ -16,7 +18,40 @@ void CentreEvaluator::setState(const double* x) {
   free_state_ = x;
   if (!robot_) return;
   const int nq = robot_->numCoordinates();
-  forwardKinematics(*robot_, Eigen::Map<const Eigen::VectorXd>(x, nq), data_);
+  const auto bytes = reinterpret_cast<const unsigned char*>(x);
+  uint64_t hash = 1469598103934665603ull;  // FNV-1a over q's bits
+  for (size_t b = 0; b < sizeof(double) * nq; ++b) hash = (hash ^ bytes[b]) * 1099511628211ull;
+  const auto [first, last] = kept_by_hash_.equal_range(hash);
+  for (auto it = first; it != last; ++it) {
+    Configuration& kept = kept_[it->second];
+    if (std::memcmp(kept.q.data(), x, sizeof(double) * nq) == 0) {
+      current_ = &kept;
+      return;
+    }
+  }
+  if (used_ == kKinematicsKept) {
+    used_ = 0;
+    kept_by_hash_.clear();
+  }
+  if (kept_.empty()) kept_.reserve(kKinematicsKept);  // never moved: current_ points into it
+  if (used_ == kept_.size()) kept_.emplace_back();
+  current_ = &kept_[used_];
+  kept_by_hash_.emplace(hash, static_cast<int>(used_++));
+  current_->q = Eigen::Map<const Eigen::VectorXd>(x, nq);
+  current_->sphere_count = 0;
+  forwardKinematics(*robot_, current_->q, current_->data);
+}
+
+const SphereDerivatives& CentreEvaluator::sphereDerivatives(int sphere) const {
+  auto& spheres = current_->spheres;
+  for (size_t k = 0; k < current_->sphere_count; ++k) {
+    if (spheres[k].first == sphere) return spheres[k].second;
+  }
+  if (current_->sphere_count == spheres.size()) spheres.emplace_back();
+  auto& [index, derivatives] = spheres[current_->sphere_count++];
+  index = sphere;
+  derivatives.compute(*robot_, current_->data, sphere);
+  return derivatives;
 }
 
 Eigen::Vector3d CentreEvaluator::inPlane(Eigen::Vector3d w) const {
@@ -26,7 +61,7 @@ Eigen::Vector3d CentreEvaluator::inPlane(Eigen::Vector3d w) const {
 
 Eigen::Vector3d CentreEvaluator::position(const CollisionCentre& centre) const {
   if (centre.source == CollisionCentre::Source::kRobotSphere) {
-    return inPlane(data_.sphere_centres[centre.index]);
+    return inPlane(current_->data.sphere_centres[centre.index]);
   }
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   for (int d = 0; d < dimension_; ++d) p(d) = free_state_[centre.index + d] + centre.offset(d);
@@ -39,29 +74,9 @@ Eigen::Matrix3Xd CentreEvaluator::jacobian(const CollisionCentre& centre) const 
     for (int d = 0; d < dimension_; ++d) j(d, d) = 1.0;
     return j;
   }
-  const std::vector<int>& chain = robot_->chainOf(centre.index);
-  Eigen::Matrix3Xd j(3, chain.size());
-  for (size_t c = 0; c < chain.size(); ++c) {
-    j.col(c) = inPlane(sphereJacobianColumn(*robot_, data_, centre.index, chain[c]));
-  }
+  Eigen::Matrix3Xd j = sphereDerivatives(centre.index).jacobian();
+  if (dimension_ == 2) j.row(2).setZero();
   return j;
-}
-
-Eigen::VectorXd CentreEvaluator::chainToFull(int sphere, const Eigen::VectorXd& v) const {
-  Eigen::VectorXd full = Eigen::VectorXd::Zero(robot_->numCoordinates());
-  const std::vector<int>& chain = robot_->chainOf(sphere);
-  for (size_t c = 0; c < chain.size(); ++c) full(chain[c]) = v(c);
-  return full;
-}
-
-Eigen::MatrixXd CentreEvaluator::chainBlock(int sphere, const Eigen::MatrixXd& full) const {
-  const std::vector<int>& chain = robot_->chainOf(sphere);
-  const int n = static_cast<int>(chain.size());
-  Eigen::MatrixXd block(n, n);
-  for (int a = 0; a < n; ++a) {
-    for (int b = 0; b < n; ++b) block(a, b) = full(chain[a], chain[b]);
-  }
-  return block;
 }
 
 Eigen::MatrixXd CentreEvaluator::weightedHessian(const CollisionCentre& centre,
@@ -69,7 +84,9 @@ Eigen::MatrixXd CentreEvaluator::weightedHessian(const CollisionCentre& centre,
   if (centre.source == CollisionCentre::Source::kFreeBody) {
     return Eigen::MatrixXd::Zero(dimension_, dimension_);
   }
-  return chainBlock(centre.index, weightedSphereHessian(*robot_, data_, centre.index, inPlane(w)));
+  Eigen::MatrixXd hessian;
+  sphereDerivatives(centre.index).weightedHessian(inPlane(w), hessian);
+  return hessian;
 }
 
 Eigen::MatrixXd CentreEvaluator::weightedThirdDerivative(const CollisionCentre& centre,
@@ -78,9 +95,9 @@ Eigen::MatrixXd CentreEvaluator::weightedThirdDerivative(const CollisionCentre& 
   if (centre.source == CollisionCentre::Source::kFreeBody) {
     return Eigen::MatrixXd::Zero(dimension_, dimension_);
   }
-  return chainBlock(centre.index,
-                    weightedSphereThirdDerivative(*robot_, data_, centre.index, inPlane(w),
-                                                  chainToFull(centre.index, v)));
+  Eigen::MatrixXd third;
+  sphereDerivatives(centre.index).weightedThirdDerivative(inPlane(w), v, third);
+  return third;
 }
 
 }  // namespace fesd

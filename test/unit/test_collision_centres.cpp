@@ -3,6 +3,7 @@
 // centre as the state itself, and the plane's projection.
 #include <memory>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -76,6 +77,42 @@ TEST(CollisionCentres, RobotSphereDerivativesAgainstFiniteDifferences) {
     EXPECT_LT((third - fesd_test::finiteDifferenceJacobian(hessian_along_v, local)).norm(), 1e-7);
     EXPECT_GT(third.norm(), 1e-3) << robot->spheres[sphere].name;  // something to compare
   }
+}
+
+// The evaluator keeps the kinematics of the configurations it has seen: returning to one, and
+// running past the number it keeps, gives exactly what a fresh evaluator computes there.
+TEST(CollisionCentres, KeptConfigurationsGiveTheBitsOfAFreshEvaluation) {
+  const auto robot = panda();
+  const int nq = robot->numCoordinates();
+  std::mt19937 random(8);
+  const CollisionCentre centre{CollisionCentre::Source::kRobotSphere, 40};
+  const Eigen::Vector3d w = fesd_test::randomVector(3, random);
+  const int local = static_cast<int>(robot->chainOf(centre.index).size());
+  const Eigen::VectorXd v = fesd_test::randomVector(local, random);
+  std::vector<Eigen::VectorXd> states;
+  for (size_t k = 0; k < CentreEvaluator::kKinematicsKept + 5; ++k) {
+    states.push_back(randomState(nq, random));
+  }
+  const auto same = [&](const CentreEvaluator& evaluator, const Eigen::VectorXd& x) {
+    CentreEvaluator fresh(robot, 3);
+    fresh.setState(x.data());
+    return evaluator.position(centre) == fresh.position(centre) &&
+           evaluator.jacobian(centre) == fresh.jacobian(centre) &&
+           evaluator.weightedHessian(centre, w) == fresh.weightedHessian(centre, w) &&
+           evaluator.weightedThirdDerivative(centre, w, v) ==
+               fresh.weightedThirdDerivative(centre, w, v);
+  };
+  CentreEvaluator evaluator(robot, 3);
+  int mismatches = 0;
+  for (int pass = 0; pass < 2; ++pass) {  // the second pass finds the first's kept or forgotten
+    for (size_t k = 0; k < states.size(); k += pass == 0 ? 1 : 97) {
+      evaluator.setState(states[k].data());
+      mismatches += !same(evaluator, states[k]);
+      evaluator.setState(states[0].data());  // back to a kept one between two new ones
+      mismatches += !same(evaluator, states[0]);
+    }
+  }
+  EXPECT_EQ(mismatches, 0);
 }
 
 TEST(CollisionCentres, FreeBodyIsItsStateItsSpheresOffsetAndPlanarScenesDropZ) {

@@ -1,11 +1,15 @@
 #pragma once
 
+#include <cstdint>
 #include <memory>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
 
 #include "fesd_trajopt/kinematics/forward_kinematics.h"
+#include "fesd_trajopt/kinematics/sphere_derivatives.h"
 
 namespace fesd {
 
@@ -28,14 +32,20 @@ class CentreEvaluator {
  public:
   /// `robot` may be null (no robot spheres); q is x's first robot->numCoordinates() entries.
   CentreEvaluator(std::shared_ptr<const KinematicModel> robot, int dimension);
+  CentreEvaluator(const CentreEvaluator&) = delete;  // its current configuration is its own
+  CentreEvaluator& operator=(const CentreEvaluator&) = delete;
 
   int dimension() const { return dimension_; }
   const KinematicModel* robot() const { return robot_.get(); }
   /// The state indices a centre depends on, ascending.
   std::vector<int> variables(const CollisionCentre& centre) const;
 
-  /// Forward kinematics at x; every evaluation below refers to the last x set.
+  /// Forward kinematics at x; every evaluation below refers to the last x set. The kinematics of
+  /// up to `kKinematicsKept` configurations are kept: an NLP's value, Jacobian and Hessian visit
+  /// its stage points in turn, each at the same q, and each sphere's derivatives there are
+  /// computed once, when first asked for, for every pair and derivative order.
   void setState(const double* x);
+  static constexpr size_t kKinematicsKept = 1024;
   Eigen::Vector3d position(const CollisionCentre& centre) const;
   /// 3 x variables(centre).size().
   Eigen::Matrix3Xd jacobian(const CollisionCentre& centre) const;
@@ -46,15 +56,26 @@ class CentreEvaluator {
                                           const Eigen::VectorXd& v) const;
 
  private:
-  /// The robot's full-q vector holding a sphere's chain-local vector v.
-  Eigen::VectorXd chainToFull(int sphere, const Eigen::VectorXd& v) const;
-  /// The chain's rows and columns of a full nq x nq matrix, with the plane's projection.
-  Eigen::MatrixXd chainBlock(int sphere, const Eigen::MatrixXd& full) const;
+  /// Forward kinematics at one q and the derivatives of the spheres asked for there (the first
+  /// `sphere_count` of `spheres`; the rest keep their memory for the next use).
+  struct Configuration {
+    Eigen::VectorXd q;
+    KinematicData data;
+    std::vector<std::pair<int, SphereDerivatives>> spheres;
+    size_t sphere_count = 0;
+  };
+  /// A robot sphere's derivatives at the current q.
+  const SphereDerivatives& sphereDerivatives(int sphere) const;
   Eigen::Vector3d inPlane(Eigen::Vector3d w) const;
 
   std::shared_ptr<const KinematicModel> robot_;
   int dimension_;
-  KinematicData data_;
+  /// The configurations seen (the first `used_` of `kept_`; all forgotten at once when it is
+  /// full, their memory reused), by a hash of q's bits; `current_` is the last x's.
+  std::vector<Configuration> kept_;
+  size_t used_ = 0;
+  std::unordered_multimap<uint64_t, int> kept_by_hash_;
+  Configuration* current_ = nullptr;
   const double* free_state_ = nullptr;  ///< the x of the last setState (not owned)
 };
 
