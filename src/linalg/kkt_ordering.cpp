@@ -89,11 +89,14 @@ std::vector<int> metisOrder(Graph graph) {
   return std::vector<int>(order.begin(), order.end());
 }
 
-/// CHOLMOD's rule for trying METIS after AMD: many flops per factor entry (500, counting a
-/// multiply-add as two), much fill.
-bool fillsMuch(const SupernodalAnalysis& analysis) {
+/// When METIS is tried after AMD: CHOLMOD's rule (many flops per factor entry: 500, counting a
+/// multiply-add as two; much fill), or a large front. A robot's contact pairs chain through the
+/// horizon (cross complementarity), and AMD, eliminating those chains early, merges the state
+/// blocks of many elements into fronts of hundreds of rows without tripping CHOLMOD's rule.
+bool worthTryingMetis(const SupernodalAnalysis& analysis) {
   const double entries = static_cast<double>(analysis.factorEntries());
-  return analysis.flops() >= 250.0 * entries && entries >= 5.0 * analysis.patternEntries();
+  return (analysis.flops() >= 250.0 * entries && entries >= 5.0 * analysis.patternEntries()) ||
+         analysis.largestFront() >= kLargeFront;
 }
 
 }  // namespace
@@ -156,7 +159,7 @@ std::shared_ptr<const SupernodalAnalysis> analyseKkt(const LowerPattern& pattern
   };
   if (ordering != FillOrdering::kAuto) return analysed(ordering);
   auto amd = analysed(FillOrdering::kAmd);
-  if (!fillsMuch(*amd)) return amd;
+  if (!worthTryingMetis(*amd)) return amd;
   auto metis = analysed(FillOrdering::kMetis);
   return metis->flops() < amd->flops() ? metis : amd;
 }

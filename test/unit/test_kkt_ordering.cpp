@@ -96,6 +96,42 @@ TEST(AnalyseKkt, AutoTriesMetisWhereAmdFillsMuch) {
       FillOrdering::kAmd);
 }
 
+// The lower pattern of a 7-point stencil on a side^3 grid (diagonal included).
+fesd::linalg::LowerPattern gridPattern(int side) {
+  const int n = side * side * side;
+  const auto index = [side](int i, int j, int k) { return (i * side + j) * side + k; };
+  fesd::linalg::LowerPattern pattern;
+  pattern.dimension = n;
+  pattern.column_starts.push_back(0);
+  for (int i = 0; i < side; ++i) {
+    for (int j = 0; j < side; ++j) {
+      for (int k = 0; k < side; ++k) {
+        pattern.rows.push_back(index(i, j, k));  // rows below the diagonal, ascending
+        if (k + 1 < side) pattern.rows.push_back(index(i, j, k + 1));
+        if (j + 1 < side) pattern.rows.push_back(index(i, j + 1, k));
+        if (i + 1 < side) pattern.rows.push_back(index(i + 1, j, k));
+        pattern.column_starts.push_back(static_cast<int>(pattern.rows.size()));
+      }
+    }
+  }
+  return pattern;
+}
+
+TEST(AnalyseKkt, AutoTriesMetisWhereAmdsFrontsAreLarge) {
+  // A 3-D grid: AMD's separators become fronts of hundreds of rows although its flops per factor
+  // entry stay under CHOLMOD's rule; auto analyses with METIS as well and keeps the cheaper.
+  const fesd::linalg::LowerPattern pattern = gridPattern(14);
+  const std::vector<char> primal(pattern.dimension, 0);
+  const auto amd = fesd::linalg::analyseKkt(pattern, primal, FillOrdering::kAmd);
+  const auto metis = fesd::linalg::analyseKkt(pattern, primal, FillOrdering::kMetis);
+  const auto chosen = fesd::linalg::analyseKkt(pattern, primal, FillOrdering::kAuto);
+  ASSERT_GE(amd->largestFront(), fesd::linalg::kLargeFront);
+  ASSERT_LT(amd->flops(), 250.0 * amd->factorEntries());  // not CHOLMOD's case
+  EXPECT_EQ(chosen->flops(), std::min(amd->flops(), metis->flops()));
+  EXPECT_LT(metis->flops(), amd->flops());
+  EXPECT_EQ(chosen->ordering(), FillOrdering::kMetis);
+}
+
 TEST(AnalyseKkt, AMatrixWithoutConstraintsOrEdges) {
   // Diagonal only (an NLP without constraints): every index its own node, nothing to match.
   const fesd_test::LowerMatrix matrix =

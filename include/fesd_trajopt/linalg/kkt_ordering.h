@@ -16,9 +16,13 @@ namespace fesd::linalg {
 std::vector<int> matchedOrdering(const LowerPattern& pattern, const std::vector<char>& constraint,
                                  FillOrdering method);
 
+/// AMD's largest front (rows) from which kAuto analyses with METIS as well.
+constexpr int kLargeFront = 128;
+
 /// The analysis of a KKT matrix in a matched ordering: AMD, or METIS as well where AMD's
 /// factor is large (CHOLMOD's rule: more than 500 flops per factor entry and five times the
-/// matrix' entries), whichever needs fewer flops; kAmd or kMetis only that one.
+/// matrix' entries) or its largest front has kLargeFront rows or more, whichever needs fewer
+/// flops; kAmd or kMetis only that one.
 std::shared_ptr<const SupernodalAnalysis> analyseKkt(const LowerPattern& pattern,
                                                      const std::vector<char>& constraint,
                                                      FillOrdering ordering);
