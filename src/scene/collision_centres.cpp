@@ -1,6 +1,8 @@
 #include "fesd_trajopt/scene/collision_centres.h"
 
 #include <cstring>
+#include <functional>
+#include <string_view>
 
 namespace fesd {
 
@@ -18,9 +20,8 @@ void CentreEvaluator::setState(const double* x) {
   free_state_ = x;
   if (!robot_) return;
   const int nq = robot_->numCoordinates();
-  const auto bytes = reinterpret_cast<const unsigned char*>(x);
-  uint64_t hash = 1469598103934665603ull;  // FNV-1a over q's bits
-  for (size_t b = 0; b < sizeof(double) * nq; ++b) hash = (hash ^ bytes[b]) * 1099511628211ull;
+  const size_t hash = std::hash<std::string_view>{}(
+      std::string_view(reinterpret_cast<const char*>(x), sizeof(double) * nq));  // q's bits
   const auto [first, last] = kept_by_hash_.equal_range(hash);
   for (auto it = first; it != last; ++it) {
     Configuration& kept = kept_[it->second];

@@ -1,6 +1,5 @@
 #pragma once
 
-#include <cstdint>
 #include <memory>
 #include <unordered_map>
 #include <utility>
@@ -74,7 +73,7 @@ class CentreEvaluator {
   /// full, their memory reused), by a hash of q's bits; `current_` is the last x's.
   std::vector<Configuration> kept_;
   size_t used_ = 0;
-  std::unordered_multimap<uint64_t, int> kept_by_hash_;
+  std::unordered_multimap<size_t, int> kept_by_hash_;
   Configuration* current_ = nullptr;
   const double* free_state_ = nullptr;  ///< the x of the last setState (not owned)
 };
