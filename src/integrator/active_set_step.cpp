@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "fesd_trajopt/discretization/collocation_discretization.h"
 
@@ -151,7 +152,11 @@ ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vecto
     }
     if (signs_hold) {
       const double violation = constraintViolation(nlp, x);
-      if (violation <= tolerance && nlp.complementarityResidual(x.data()) <= tolerance) {
+      // The start's data within kNegligibleFixedValue of zero counts as zero, as it did when
+      // the active set was fixed: a contact met at the step's start (its gap -1e-10 there, from
+      // the step before) leaves a product with its force that no unknown can lower.
+      const double residual = discretization.nlp().complementarityResidualOfUnknowns(x.data());
+      if (violation <= tolerance && residual <= tolerance) {
         step.outcome =
             modes == predicted ? ActiveSetOutcome::kPredicted : ActiveSetOutcome::kLocated;
         step.report = solvedReport(nlp, std::move(x));
@@ -159,7 +164,10 @@ ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vecto
         step.modes = std::move(modes);
         return step;
       }
-      step.failure = "a bound or row is violated by " + std::to_string(violation);
+      std::ostringstream failure;
+      failure << "a bound or row is violated by " << violation << ", complementarity by "
+              << residual;
+      step.failure = failure.str();
       return step;
     }
     if (next == modes) {

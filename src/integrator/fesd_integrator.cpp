@@ -285,14 +285,15 @@ class FesdIntegrator::Run {
     if (options_.active_set_steps && remainingBudget() != 0.0 &&
         (discretization.stepsAreFree() || nlp.numComplementarities() == 0)) {
       const bool first = before == nullptr;
+      const PairModes from_start =
+          predictModes(before,
+                       first ? discretization.activeAt(state_, options_.activity_tolerance)
+                             : std::vector<bool>{},
+                       part.num_elements, options_.homotopy.complementarity_tolerance);
       const PairModes predicted =
-          reference_ != nullptr
-              ? referenceModes(*reference_, start_time, part.length, part.num_elements,
-                               options_.activity_tolerance)
-              : predictModes(before,
-                             first ? discretization.activeAt(state_, options_.activity_tolerance)
-                                   : std::vector<bool>{},
-                             part.num_elements, options_.homotopy.complementarity_tolerance);
+          reference_ != nullptr ? referenceModes(*reference_, start_time, part.length,
+                                                 part.num_elements, options_.activity_tolerance)
+                                : from_start;
       ActiveSetOptions fast_options;
       fast_options.tolerance = options_.homotopy.complementarity_tolerance;
       fast_options.start_time = start_time;
@@ -301,6 +302,11 @@ class FesdIntegrator::Run {
       ActiveSetStep fast =
           solveByActiveSets(discretization, guess, predicted, fast_options, newton_);
       result.newton_iterations += fast.newton_iterations;
+      if (fast.outcome == ActiveSetOutcome::kFailed && reference_drifts_ &&
+          predicted != from_start) {
+        fast = solveByActiveSets(discretization, guess, from_start, fast_options, newton_);
+        result.newton_iterations += fast.newton_iterations;
+      }
       if (fast.outcome != ActiveSetOutcome::kFailed) {
         attempt.report = std::move(fast.report);
         attempt.piece = std::move(fast.piece);
@@ -393,9 +399,15 @@ class FesdIntegrator::Run {
   /// A trajectory close to the one sought (a plan being verified): its forces predict each
   /// part's active sets; nullptr: predicted from the start.
   const Trajectory* reference_ = nullptr;
+  /// The run may drift from the reference (one run from its start, not from its states): where
+  /// its modes fail, those the run's own history predicts are tried too.
+  bool reference_drifts_ = false;
 
  public:
-  void setReference(const Trajectory* reference) { reference_ = reference; }
+  void setReference(const Trajectory* reference, bool drifts) {
+    reference_ = reference;
+    reference_drifts_ = drifts;
+  }
   /// By (tenths, middles, kind); a map's references stay valid as parts are added.
   std::map<std::tuple<int, int, Kind>, Part> parts_;
   bool split_ = false;  ///< the current step was split
@@ -412,7 +424,8 @@ FesdIntegrator::FesdIntegrator(std::shared_ptr<const DynamicsModel> model,
 }
 
 SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double horizon, int num_steps,
-                                          const std::vector<Eigen::VectorXd>& controls) {
+                                          const std::vector<Eigen::VectorXd>& controls,
+                                          const Trajectory* reference) {
   if (num_steps < 1) throw std::invalid_argument("FesdIntegrator: num_steps must be >= 1");
   const int nu = model_->controlSize();
   if (!(controls.size() == static_cast<size_t>(num_steps) || controls.size() == 1 ||
@@ -420,6 +433,7 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
     throw std::invalid_argument("FesdIntegrator: give one control per step or a single one");
   }
   Run run(*this, x0, horizon / num_steps, num_steps);
+  run.setReference(reference, true);
   SimulationResult& result = run.result;
   for (int step = 0; step < num_steps; ++step) {
     const Eigen::VectorXd u =
@@ -472,7 +486,7 @@ ShootingResult FesdIntegrator::shoot(const std::vector<Eigen::VectorXd>& starts,
   ShootingResult shooting;
   shooting.status = SolveStatus::kSuccess;
   Run run(*this, starts[0], step_length, 1);
-  run.setReference(reference);
+  run.setReference(reference, false);
   for (int k = 0; k < steps; ++k) {
     Trajectory arrival =
         k > 0 && reference != nullptr ? lastElementOf(*reference, k - 1) : Trajectory();

@@ -543,6 +543,23 @@ double NlpAssembly::complementarityResidual(const double* x) const {
   return residual;
 }
 
+double NlpAssembly::complementarityResidualOfUnknowns(const double* x) const {
+  const auto unknownPart = [&](const LinearExpression& side) {
+    double value = 0.0;
+    for (const LinearTerm& t : side) {
+      const double data = x_lower_[t.variable];
+      if (data == x_upper_[t.variable] && std::fabs(data) <= kNegligibleFixedValue) continue;
+      value += t.coefficient * x[t.variable];
+    }
+    return value;
+  };
+  double residual = 0.0;
+  for (const Complementarity& comp : complementarities_) {
+    residual = std::max(residual, std::fabs(unknownPart(comp.left) * unknownPart(comp.right)));
+  }
+  return residual;
+}
+
 double NlpAssembly::equalityResidual(const double* x) const {
   std::vector<double> g(numConstraints());
   constraints(x, g.data());

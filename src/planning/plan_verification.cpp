@@ -155,12 +155,15 @@ OpenLoop openLoop(const SceneTask& task, const Trajectory& plan,
                   std::vector<PairDecision> decisions,
                   const std::function<SimulationOptions()>& fine, double margin) {
   OpenLoop open;
+  const std::vector<ContactPair> plan_pairs = modelledOf(decisions);
   const int intervals = static_cast<int>(plan.controls.size());
   for (bool grew = true; grew;) {
     const MovingPart part = movingPart(task, decisions);
-    const SimulationResult result = FesdIntegrator(part.task.scene.model(part.modelled), fine())
-                                        .simulate(partState(task, part, plan.states.front()),
-                                                  task.horizon, intervals, plan.controls);
+    const Trajectory reference = partTrajectory(task, part, plan, plan_pairs);
+    const SimulationResult result =
+        FesdIntegrator(part.task.scene.model(part.modelled), fine())
+            .simulate(partState(task, part, plan.states.front()), task.horizon, intervals,
+                      plan.controls, &reference);
     if (result.status != SolveStatus::kSuccess) break;
     open.trajectory = fullSceneTrajectory(task, part, result.trajectory);
     grew = modelPairsThatCameNear(task.scene, {densePath(open.trajectory)}, margin, decisions);

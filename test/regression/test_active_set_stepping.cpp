@@ -77,6 +77,42 @@ TEST(ActiveSetStepping, ExampleOneMatchesTheHomotopyWithoutAnIpoptIteration) {
   }
 }
 
+TEST(ActiveSetStepping, AReferenceRunPredictsItsModesAndAWrongOneCostsNoHomotopy) {
+  // simulate() with a reference, as a plan's open-loop run is verified: a right reference
+  // (the run itself) and a wrong one (in contact throughout, which the start contradicts) give
+  // the run without one; the wrong one's parts fall back to the modes the run's history predicts.
+  namespace example = fesd::circle_example;
+  fesd::SimulationOptions options;
+  options.discretization.num_stages = 3;
+  options.refine_elements = false;
+  const int steps = 10;
+  fesd::FesdIntegrator integrator(example::model(), options);
+  const fesd::SimulationResult plain =
+      integrator.simulate(example::initialState(), example::horizon(), steps);
+  ASSERT_EQ(plain.status, fesd::SolveStatus::kSuccess) << plain.message;
+  fesd::Trajectory reference = plain.trajectory;
+  for (const bool right : {true, false}) {
+    SCOPED_TRACE(right ? "the run as its reference" : "in contact throughout");
+    if (!right) {
+      for (fesd::ElementValues& element : reference.elements) element.stage_multipliers.setOnes();
+    }
+    const fesd::SimulationResult run =
+        integrator.simulate(example::initialState(), example::horizon(), steps, {}, &reference);
+    ASSERT_EQ(run.status, fesd::SolveStatus::kSuccess) << run.message;
+    EXPECT_EQ(run.totals.iterations, 0);
+    EXPECT_EQ(run.homotopy_parts, 0);
+    ASSERT_EQ(run.trajectory.times.size(), plain.trajectory.times.size());
+    for (size_t i = 0; i < run.trajectory.times.size(); ++i) {
+      EXPECT_NEAR(run.trajectory.times[i], plain.trajectory.times[i], 1e-12);
+      EXPECT_LT((run.trajectory.states[i] - plain.trajectory.states[i]).norm(), 1e-12);
+    }
+    ASSERT_EQ(run.trajectory.switches.size(), 2u);
+    if (right) {
+      EXPECT_GT(run.predicted_parts, plain.predicted_parts);  // the contact's step
+    }
+  }
+}
+
 TEST(ActiveSetStepping, RandomPushScenesMatchTheHomotopy) {
   namespace ps = fesd::push_scenes;
   for (const unsigned seed : {0u, 7u, 12u, 13u}) {

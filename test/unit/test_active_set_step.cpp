@@ -89,6 +89,30 @@ TEST(ActiveSetStep, ModesThatContradictTheStartAreRefusedForTheHomotopy) {
   EXPECT_NE(fast.failure.find("contradict"), std::string::npos) << fast.failure;
 }
 
+TEST(ActiveSetStep, AContactMetAtTheStartWithinTheDataToleranceIsKept) {
+  // Sliding along the line from a start 9e-10 inside it (as the step before can end): c(x0) is
+  // data that counts as zero, and its product with the force (lambda = x1 > 1) no unknown can
+  // lower; the slide is the answer, not a failure left to the homotopy.
+  fesd::OcpDefinition ocp;
+  ocp.model = example::model();
+  ocp.initial_state = example::exactState(example::contactTime() + 0.3);
+  ocp.initial_state(1) -= 9e-10;
+  ocp.horizon = 0.46;
+  ocp.num_intervals = 1;
+  fesd::DiscretizationOptions options;
+  options.num_stages = 3;
+  options.num_elements = 2;
+  const auto discretization = fesd::discretize(ocp, options);
+  const fesd::PairModes sliding(2, std::vector<bool>{true});
+  const fesd::ActiveSetStep fast = fesd::solveByActiveSets(
+      *discretization, discretization->constantGuess(), sliding, fesd::ActiveSetOptions{});
+  ASSERT_EQ(fast.outcome, fesd::ActiveSetOutcome::kPredicted) << fast.failure;
+  EXPECT_GT(fast.report.complementarity_residual, 1e-9);  // with the start's data
+  const fesd::Trajectory piece = discretization->extract(fast.report.solution.data());
+  EXPECT_NEAR(piece.finalState()(1), -1.0, 1e-12);
+  EXPECT_NEAR(piece.finalState()(0), example::exactState(example::contactTime() + 0.76)(0), 1e-6);
+}
+
 TEST(ActiveSetStep, StepsAreTiedWhereNoPairSwitchesInsideAControlInterval) {
   fesd::OcpDefinition ocp;
   ocp.model = example::model();

@@ -100,6 +100,18 @@ TEST(PolishingWithData, NegligibleDataCountsAsZero) {
   EXPECT_EQ(pair.nlp.variableUpper(pair.b), kInf);
 }
 
+TEST(PolishingWithData, TheUnknownsResidualLeavesOutOnlyNegligibleData) {
+  PairWithData negligible(-9e-10);  // a start 9e-10 inside the boundary
+  const double x[] = {-9e-10, 0.0, 5.0};
+  EXPECT_NEAR(negligible.nlp.complementarityResidual(x), 4.5e-9, 1e-20);
+  EXPECT_EQ(negligible.nlp.complementarityResidualOfUnknowns(x), 0.0);
+  PairWithData data(2e-9);  // beyond kNegligibleFixedValue: it counts
+  const double y[] = {2e-9, 0.0, 5.0};
+  EXPECT_NEAR(data.nlp.complementarityResidualOfUnknowns(y), 1e-8, 1e-20);
+  const double z[] = {-9e-10, 1e-3, 5.0};  // an unknown side's value always counts
+  EXPECT_NEAR(negligible.nlp.complementarityResidualOfUnknowns(z), 5e-3, 1e-15);
+}
+
 TEST(PolishingWithData, RefusedWhenBothSidesHoldNonzeroData) {
   fesd::NlpAssembly nlp;
   const int c0 = nlp.addVariables(1, 0.2, 0.2, 0.2);

@@ -147,9 +147,13 @@ class FesdIntegrator {
   FesdIntegrator(std::shared_ptr<const DynamicsModel> model, SimulationOptions options);
 
   /// `controls` holds one control per step, a single control for all steps, or nothing when
-  /// the model has no controls. Stops at the first step that does not converge.
+  /// the model has no controls. Stops at the first step that does not converge. `reference`
+  /// (optional): a trajectory the run is expected to stay near, one control interval per step
+  /// (a plan executed open loop): its forces predict each part's active sets first, then the
+  /// run's own history does.
   SimulationResult simulate(const Eigen::VectorXd& x0, double horizon, int num_steps,
-                            const std::vector<Eigen::VectorXd>& controls = {});
+                            const std::vector<Eigen::VectorXd>& controls = {},
+                            const Trajectory* reference = nullptr);
 
   /// Step k of length step_length from starts[k] under controls[k] (none when the model has no
   /// controls), each from its own start rather than from the end of the step before; stops at

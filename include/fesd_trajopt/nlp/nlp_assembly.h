@@ -102,6 +102,9 @@ class NlpAssembly : public RelaxedMpcc {
   }
   const std::vector<int>& complementarityRows() const override { return complementarity_rows_; }
   double complementarityResidual(const double* x) const override;
+  /// The same with the sides' data (fixed variables) within kNegligibleFixedValue of zero taken
+  /// as zero, as fixGivenActiveSet takes them: what the unknowns leave.
+  double complementarityResidualOfUnknowns(const double* x) const;
   /// Largest |g_i(x) - b_i| over the equality rows (dynamics and algebraic equations): how far
   /// a guess is from satisfying them.
   double equalityResidual(const double* x) const;
