@@ -95,9 +95,13 @@ int robotPush(const Arguments& args) {
   if (outcome.trajectory.states.empty()) return 1;
   std::printf(
       "  target distance %.2e; smallest gap at the element boundaries %.2e (every pair in reach), "
-      "in the re-simulation %.2e; verification error %.2e\n",
+      "in the re-simulation %.2e; verification error %.2e, open loop %.3g, %.3f s (%.2fx the "
+      "solve's Ipopt and evaluations)\n",
       outcome.target_distances[0], fesd::smallestBoundaryGap(scene, in_reach, outcome.trajectory),
-      outcome.verification.gap, outcome.verification.error);
+      outcome.verification.gap, outcome.verification.error, outcome.verification.open_loop_error,
+      outcome.verification.seconds,
+      outcome.verification.seconds /
+          std::max(1e-9, outcome.report.ipopt_seconds + outcome.report.evaluation_seconds));
   // Enough digits to compare plans across BLAS builds (tools/with_blas.sh).
   const Eigen::VectorXd end = outcome.trajectory.finalState();
   std::printf("  objective %.12g; end state", outcome.report.objective);

@@ -535,6 +535,11 @@ SimulationOptions verificationOptions(const DiscretizationOptions& configured,
   // 0 when the solve used it all: the re-simulation times out and its error is infinite.
   fine.wall_time_budget = std::max(0.0, remaining_budget);
   fine.refine_by_homotopy = false;
+  // A step's relaxed NLP converges in tens of iterations; one that needs more is a step with
+  // more switches than element boundaries (a contact and the release it causes), which
+  // splitting resolves: on the cluttered family such homotopies ran 300-1200 iterations to fail.
+  fine.homotopy.ipopt.max_iterations = kVerificationNlpIterations;
+  fine.retry_homotopy.ipopt.max_iterations = kVerificationNlpIterations;
   return fine;
 }
 

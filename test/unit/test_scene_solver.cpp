@@ -68,6 +68,26 @@ TEST(SimulateSceneTask, RefusesControlsOfTheWrongCountSizeOrValue) {
   EXPECT_TRUE(refused.trajectory.states.empty());
 }
 
+TEST(VerificationOptions, AreFinerThanTheSolveAndStopHopelessStepsEarly) {
+  fesd::DiscretizationOptions configured;
+  configured.num_stages = 3;
+  configured.num_elements = 6;
+  fesd::OcpOptions solve;
+  solve.discretization.num_stages = 4;
+  solve.discretization.interval_elements = {2, 5, 3};
+  solve.homotopy.ipopt.linear_solver = fesd::kLdltSolver;
+  const fesd::SimulationOptions fine = fesd::verificationOptions(configured, solve, 7.0);
+  EXPECT_EQ(fine.discretization.num_stages, 4);
+  EXPECT_EQ(fine.discretization.num_elements, 10);  // twice the solve's most
+  EXPECT_EQ(fine.wall_time_budget, 7.0);
+  EXPECT_EQ(fine.homotopy.ipopt.linear_solver, fesd::kLdltSolver);
+  EXPECT_FALSE(fine.refine_by_homotopy);
+  EXPECT_EQ(fine.homotopy.ipopt.max_iterations, fesd::kVerificationNlpIterations);
+  EXPECT_EQ(fine.retry_homotopy.ipopt.max_iterations, fesd::kVerificationNlpIterations);
+  EXPECT_LT(fesd::kVerificationNlpIterations, fesd::IpoptSettings{}.max_iterations);
+  EXPECT_EQ(fesd::verificationOptions(configured, solve, -1.0).wall_time_budget, 0.0);
+}
+
 TEST(SolveSceneTask, RefusesInvalidTasksAndNamesUnreachableTargetsWithoutSolving) {
   fesd::SceneTask invalid = pushingTask();
   invalid.scene.bodies()[1].radius = -1.0;

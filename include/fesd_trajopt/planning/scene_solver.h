@@ -148,9 +148,13 @@ struct SceneSolveOptions {
 SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
                             const SceneSolveOptions& options);
 
+/// Ipopt iterations per relaxed NLP of a verification step's homotopy (SimulationOptions).
+constexpr int kVerificationNlpIterations = 100;
+
 /// The grid a plan is verified on: the configured one, but at least the solve's stages and twice
 /// its elements; with the solve's linear solver, within the budget left (none when the solve used
-/// it all).
+/// it all); a step's homotopy stops each relaxed NLP after kVerificationNlpIterations (the step
+/// is split instead).
 SimulationOptions verificationOptions(const DiscretizationOptions& configured,
                                       const OcpOptions& solve, double remaining_budget);
 
