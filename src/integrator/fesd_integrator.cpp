@@ -157,8 +157,9 @@ class FesdIntegrator::Run {
   /// False when it stops the simulation.
   bool solve(int tenths, int middles, const Eigen::VectorXd& u, double start_time) {
     Part& part = partOf(tenths, middles, kSwitchDetection);
-    Attempt attempt = solvePart(part, u, start_time);
     const bool can_split = tenths + middles < options_.max_step_splits;
+    const bool split_first = options_.split_before_homotopy && can_split && tenths + middles == 0;
+    Attempt attempt = solvePart(part, u, start_time, !split_first);
     refineIfNeeded(part, tenths, middles, u, start_time, !can_split, attempt);
     const bool timed_out = attempt.report.status == SolveStatus::kTimeout;
     if (can_split && !timed_out && !exact(attempt.report, part.discretization->nlp())) {

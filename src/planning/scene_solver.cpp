@@ -540,6 +540,7 @@ SimulationOptions verificationOptions(const DiscretizationOptions& configured,
   // splitting resolves: on the cluttered family such homotopies ran 300-1200 iterations to fail.
   fine.homotopy.ipopt.max_iterations = kVerificationNlpIterations;
   fine.retry_homotopy.ipopt.max_iterations = kVerificationNlpIterations;
+  fine.split_before_homotopy = true;
   return fine;
 }
 

@@ -113,6 +113,37 @@ TEST(ActiveSetStepping, AReferenceRunPredictsItsModesAndAWrongOneCostsNoHomotopy
   }
 }
 
+TEST(ActiveSetStepping, AStepSplitBeforeItsHomotopySkipsTheWholeStepsHomotopy) {
+  // One step of Example 1 from t = 1 to 3.5 on 2 elements holds the contact (1.309) and the
+  // release (3.041): one free boundary for two switches, no active set solves it whole. Split
+  // first (a verification's setting), its parts hold one switch each; the step's homotopy first
+  // fails and costs its iterations before the same split.
+  namespace example = fesd::circle_example;
+  fesd::SimulationOptions options;
+  options.discretization.num_stages = 3;
+  options.discretization.num_elements = 2;
+  options.refine_elements = false;
+  const Eigen::VectorXd x0 = example::exactState(1.0);
+  const Eigen::VectorXd exact = example::exactState(3.5);
+  options.split_before_homotopy = true;
+  const fesd::SimulationResult split =
+      fesd::FesdIntegrator(example::model(), options).simulate(x0, 2.5, 1);
+  options.split_before_homotopy = false;
+  const fesd::SimulationResult homotopy_first =
+      fesd::FesdIntegrator(example::model(), options).simulate(x0, 2.5, 1);
+  ASSERT_EQ(split.status, fesd::SolveStatus::kSuccess) << split.message;
+  ASSERT_EQ(homotopy_first.status, fesd::SolveStatus::kSuccess) << homotopy_first.message;
+  std::printf("Ipopt iterations: split first %d (%d parts by homotopy), homotopy first %d\n",
+              split.totals.iterations, split.homotopy_parts, homotopy_first.totals.iterations);
+  EXPECT_EQ(split.split_steps, 1);
+  EXPECT_EQ(homotopy_first.split_steps, 1);
+  EXPECT_LT(split.totals.iterations, homotopy_first.totals.iterations);
+  ASSERT_EQ(split.trajectory.switches.size(), 2u);
+  EXPECT_NEAR(split.trajectory.switches[0].time, example::contactTime() - 1.0, 1e-6);
+  EXPECT_NEAR(split.trajectory.switches[1].time, example::releaseTime() - 1.0, 1e-3);
+  EXPECT_LT((split.trajectory.finalState() - exact).norm(), 1e-3);
+}
+
 TEST(ActiveSetStepping, RandomPushScenesMatchTheHomotopy) {
   namespace ps = fesd::push_scenes;
   for (const unsigned seed : {0u, 7u, 12u, 13u}) {

@@ -82,6 +82,7 @@ TEST(VerificationOptions, AreFinerThanTheSolveAndStopHopelessStepsEarly) {
   EXPECT_EQ(fine.wall_time_budget, 7.0);
   EXPECT_EQ(fine.homotopy.ipopt.linear_solver, fesd::kLdltSolver);
   EXPECT_FALSE(fine.refine_by_homotopy);
+  EXPECT_TRUE(fine.split_before_homotopy);
   EXPECT_EQ(fine.homotopy.ipopt.max_iterations, fesd::kVerificationNlpIterations);
   EXPECT_EQ(fine.retry_homotopy.ipopt.max_iterations, fesd::kVerificationNlpIterations);
   EXPECT_LT(fesd::kVerificationNlpIterations, fesd::IpoptSettings{}.max_iterations);
