@@ -11,14 +11,11 @@ void SphereDerivatives::compute(const KinematicModel& model, const KinematicData
   jacobian_.resize(3, size_);
   second_.resize(static_cast<size_t>(size_) * size_);
   turning_axes_.resize(size_);
-  const Eigen::Vector3d& centre = data.sphere_centres[sphere];
   for (int a = 0; a < size_; ++a) {
     const int joint = chain[a];
-    const Eigen::Vector3d& axis = data.joint_axes[joint];
     const bool prismatic = model.joints[joint].type == JointType::kPrismatic;
-    turning_axes_[a] = prismatic ? Eigen::Vector3d::Zero() : axis;
-    jacobian_.col(a) =
-        prismatic ? axis : axis.cross(centre - data.joint_frames[joint].translation());
+    turning_axes_[a] = prismatic ? Eigen::Vector3d::Zero() : data.joint_axes[joint];
+    jacobian_.col(a) = sphereJacobianColumn(model, data, sphere, joint);
   }
   for (int a = 0; a < size_; ++a) {
     for (int b = a; b < size_; ++b) {

@@ -342,8 +342,7 @@ NlpAssembly::ActiveSetChoice NlpAssembly::chooseActiveSet(const double* x) const
   // vanish, so the other side must, however small this side is at x.
   const auto canVanish = [this](const std::vector<LinearTerm>& side) {
     for (const LinearTerm& t : side) {
-      const double value = x_lower_[t.variable];
-      if (value == x_upper_[t.variable] && std::fabs(value) > kNegligibleFixedValue) return false;
+      if (fixed(t.variable) && !fixedNearZero(t.variable)) return false;
     }
     return true;
   };
@@ -432,9 +431,9 @@ bool NlpAssembly::fixPairs(const std::vector<bool>& left_is_zero, const std::vec
       continue;
     }
     for (const LinearTerm& t : left_is_zero[p] ? comp.left : comp.right) {
-      if (x_lower_[t.variable] == x_upper_[t.variable]) {
+      if (fixed(t.variable)) {
         // Data: it must be (negligibly close to) zero to be the zero side.
-        if (std::fabs(x_lower_[t.variable]) > kNegligibleFixedValue) return false;
+        if (!fixedNearZero(t.variable)) return false;
         continue;
       }
       if (t.coefficient <= 0.0 || x_lower_[t.variable] != 0.0) return false;
@@ -535,27 +534,26 @@ void NlpAssembly::boundsBeforeActiveSet(double* x_lower, double* x_upper) const 
 }
 
 double NlpAssembly::complementarityResidual(const double* x) const {
-  double residual = 0.0;
-  for (const Complementarity& comp : complementarities_) {
-    residual =
-        std::max(residual, std::fabs(linearValue(comp.left, x) * linearValue(comp.right, x)));
-  }
-  return residual;
+  return largestProduct(x, false);
 }
 
 double NlpAssembly::complementarityResidualOfUnknowns(const double* x) const {
-  const auto unknownPart = [&](const LinearExpression& side) {
+  return largestProduct(x, true);
+}
+
+double NlpAssembly::largestProduct(const double* x, bool without_negligible_fixed) const {
+  const auto sideValue = [&](const LinearExpression& side) {
     double value = 0.0;
     for (const LinearTerm& t : side) {
-      const double data = x_lower_[t.variable];
-      if (data == x_upper_[t.variable] && std::fabs(data) <= kNegligibleFixedValue) continue;
-      value += t.coefficient * x[t.variable];
+      if (!(without_negligible_fixed && fixedNearZero(t.variable))) {
+        value += t.coefficient * x[t.variable];
+      }
     }
     return value;
   };
   double residual = 0.0;
   for (const Complementarity& comp : complementarities_) {
-    residual = std::max(residual, std::fabs(unknownPart(comp.left) * unknownPart(comp.right)));
+    residual = std::max(residual, std::fabs(sideValue(comp.left) * sideValue(comp.right)));
   }
   return residual;
 }

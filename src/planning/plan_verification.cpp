@@ -150,12 +150,12 @@ struct OpenLoop {
 
 /// The plan's controls re-simulated from its start in one run (the fine grid `fine()` gives,
 /// within what is left of the budget), lazily: the drift may bring the bodies near pairs the plan
-/// never met, which are then modelled and the run repeated.
+/// never met, which are then modelled and the run repeated. The plan (its forces those of
+/// `plan_pairs`) predicts the run's active sets.
 OpenLoop openLoop(const SceneTask& task, const Trajectory& plan,
-                  std::vector<PairDecision> decisions,
+                  const std::vector<ContactPair>& plan_pairs, std::vector<PairDecision> decisions,
                   const std::function<SimulationOptions()>& fine, double margin) {
   OpenLoop open;
-  const std::vector<ContactPair> plan_pairs = modelledOf(decisions);
   const int intervals = static_cast<int>(plan.controls.size());
   for (bool grew = true; grew;) {
     const MovingPart part = movingPart(task, decisions);
@@ -240,8 +240,9 @@ Verification verifyPlan(const SceneTask& task, const Trajectory& plan,
   };
   // The open-loop run in a thread of its own while the intervals are re-simulated: neither
   // depends on the other (each its own integrator), so the answer is the same either way.
-  std::future<OpenLoop> open_loop = std::async(
-      std::launch::async, [&] { return openLoop(task, plan, decisions, remaining, margin); });
+  std::future<OpenLoop> open_loop = std::async(std::launch::async, [&] {
+    return openLoop(task, plan, plan_pairs, decisions, remaining, margin);
+  });
   std::vector<PairDecision> in_use = decisions;
   // Multiple shooting, lazily: every checked pair that an interval's re-simulation brings near.
   ShootingResult shooting;

@@ -14,7 +14,7 @@ namespace fesd {
 /// Hessian and third derivative follow by dot products alone (the chain's structure: a joint's
 /// motion turns everything below it, so d col_j / dq_i = a_i x col_j for i <= j, and the third
 /// derivative along i <= j <= k is a_i x d^2 p / dq_j dq_k; zero where i or j is prismatic). The
-/// Jacobian is sphereJacobianColumn's to the bit; no search of the chain per entry, no
+/// Jacobian's columns are sphereJacobianColumn's; no search of the chain per entry, no
 /// allocation once sized for the longest chain.
 class SphereDerivatives {
  public:

@@ -75,8 +75,7 @@ class NlpAssembly : public RelaxedMpcc {
   /// a side of a pair the fixed active set leaves biactive (zero in the active set's meaning,
   /// though left to the NLP; setBiactiveRule).
   bool fixedAtAboutZero(int variable) const {
-    return (x_lower_[variable] == x_upper_[variable] &&
-            std::fabs(x_lower_[variable]) <= kNegligibleFixedValue) ||
+    return fixedNearZero(variable) ||
            (!biactive_variables_.empty() && biactive_variables_[variable]);
   }
   std::vector<double>& initialGuess() { return initial_; }
@@ -183,6 +182,15 @@ class NlpAssembly : public RelaxedMpcc {
   /// there are none).
   std::vector<bool> biactive_pairs_, biactive_variables_;
   /// fixGivenActiveSet, leaving the `biactive` pairs' sides free.
+  /// Fixed (lower = upper: data, or a side the active set fixed), and within
+  /// kNegligibleFixedValue of zero.
+  bool fixed(int variable) const { return x_lower_[variable] == x_upper_[variable]; }
+  bool fixedNearZero(int variable) const {
+    return fixed(variable) && std::fabs(x_lower_[variable]) <= kNegligibleFixedValue;
+  }
+  /// The largest |left * right| over the pairs, `without_negligible_fixed`: leaving out the
+  /// sides' terms fixedNearZero.
+  double largestProduct(const double* x, bool without_negligible_fixed) const;
   bool fixPairs(const std::vector<bool>& left_is_zero, const std::vector<bool>& biactive,
                 const double* x);
   // Scratch buffers sized to the largest function term (evaluation is single-threaded per NLP).
