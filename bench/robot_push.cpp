@@ -16,6 +16,7 @@
 #include "fesd_trajopt/examples/robot_scenes.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
 #include "fesd_trajopt/planning/scene_solver.h"
+#include "fesd_trajopt/solver/kkt_capture.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 #include "showcase_reference.h"
 
@@ -51,8 +52,10 @@ int robotPush(const Arguments& args) {
   const double showcase_seconds = with_showcase ? timeShowcase(showcase_options, "") : 0.0;
 
   fesd::Stopwatch stopwatch;
+  fesd::KktCapture capture;
   const fesd::SceneOutcome outcome = fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
   const double seconds = stopwatch.wallSeconds();
+  const fesd::KktCapture::Totals kkt = capture.totals();
   if (!outcome.invalid.empty()) {
     std::printf("refused: %s\n", outcome.invalid.c_str());
     return 1;
@@ -79,6 +82,15 @@ int robotPush(const Arguments& args) {
       1e3 * (outcome.report.ipopt_seconds + outcome.report.evaluation_seconds) /
           std::max(1, outcome.report.iterations),
       outcome.report.ipopt_seconds, outcome.report.evaluation_seconds, outcome.report.objective);
+  if (kkt.factorisations > 0) {
+    std::printf(
+        "  KKT (our LDL^T): %d factorisations (%.2f per iteration) in %.2f s, %d solves in %.2f s, "
+        "largest system %d with %lld factor entries\n",
+        kkt.factorisations,
+        static_cast<double>(kkt.factorisations) / std::max(1, outcome.report.iterations),
+        kkt.factor_seconds, kkt.solves, kkt.solve_seconds, kkt.largest_dimension,
+        kkt.factor_entries);
+  }
   std::printf("  last NLP: %d variables, %d constraints, %d complementarities\n",
               nlp.numVariables(), nlp.numConstraints(), nlp.numComplementarities());
   std::printf("  first guess: residual %.3g in the NLP's equations\n", outcome.guess_residual);

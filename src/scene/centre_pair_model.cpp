@@ -1,7 +1,6 @@
 #include "fesd_trajopt/scene/centre_pair_model.h"
 
 #include <algorithm>
-#include <map>
 
 #include "fesd_trajopt/function/pattern_builder.h"
 
@@ -79,80 +78,134 @@ PairLayout layoutOf(const CentreEvaluator& evaluator, const CentrePair& pair) {
   return layout;
 }
 
-/// A pair's derivatives in its local variables at the evaluator's state.
+/// A curved pair's buffers, sized once for its variables (n local, na and nb per side): its
+/// evaluations write into them, so that the NLP's evaluations allocate nothing per pair.
+struct PairWork {
+  PairWork() = default;  // a translating pair's: empty
+  explicit PairWork(const PairLayout& layout) {
+    const int n = static_cast<int>(layout.variables.size());
+    const int na = static_cast<int>(layout.a_slots.size());
+    const int nb = static_cast<int>(layout.b_slots.size());
+    a_jacobian.resize(3, na);
+    b_jacobian.resize(3, nb);
+    jacobian.resize(3, n);
+    gradient.resize(n);
+    direction.resize(n);
+    mixed.resize(n);
+    a_direction.resize(na);
+    b_direction.resize(nb);
+    a_block.resize(na, na);
+    b_block.resize(nb, nb);
+    for (Eigen::MatrixXd* m : {&hessian, &curvature, &gd, &third, &third_derivative}) {
+      m->resize(n, n);
+    }
+    g.resize(n, 3);
+  }
+  Eigen::Matrix3Xd a_jacobian, b_jacobian, jacobian;
+  Eigen::Vector3d difference = Eigen::Vector3d::Zero();
+  /// direction: the weights a caller contracts with (local variables); mixed: Hess c times them.
+  Eigen::VectorXd gradient, direction, mixed, a_direction, b_direction;
+  Eigen::MatrixXd a_block, b_block, hessian, curvature, g, gd, third, third_derivative;
+};
+
+/// A curved pair's derivatives in its local variables at the evaluator's state, in its PairWork.
 class LocalPair {
  public:
-  LocalPair(const CentreEvaluator& evaluator, const CentrePair& pair, const PairLayout& layout)
-      : evaluator_(evaluator), pair_(pair), layout_(layout) {
-    const int n = static_cast<int>(layout.variables.size());
-    jacobian_ = Eigen::Matrix3Xd::Zero(3, n);
-    scatterColumns(evaluator.jacobian(pair.a), layout.a_slots, 1.0);
-    difference_ = evaluator.position(pair.a);
+  LocalPair(const CentreEvaluator& evaluator, const CentrePair& pair, const PairLayout& layout,
+            PairWork& work)
+      : evaluator_(evaluator), pair_(pair), layout_(layout), work_(work) {
+    work_.jacobian.setZero();
+    evaluator.jacobian(pair.a, work_.a_jacobian);
+    scatterColumns(work_.a_jacobian, layout.a_slots, 1.0);
+    work_.difference = evaluator.position(pair.a);
     if (pair.kind == CentrePair::Kind::kCentre) {
-      scatterColumns(evaluator.jacobian(pair.b), layout.b_slots, -1.0);
-      difference_ -= evaluator.position(pair.b);
+      evaluator.jacobian(pair.b, work_.b_jacobian);
+      scatterColumns(work_.b_jacobian, layout.b_slots, -1.0);
+      work_.difference -= evaluator.position(pair.b);
     } else if (pair.kind == CentrePair::Kind::kPoint) {
-      difference_ -= pair.point;
+      work_.difference -= pair.point;
     }
   }
 
-  Eigen::VectorXd gradient() const {
-    if (pair_.kind == CentrePair::Kind::kWall) return jacobian_.transpose() * pair_.point;
-    return 2.0 * jacobian_.transpose() * difference_;
+  const Eigen::VectorXd& gradient() const {
+    if (pair_.kind == CentrePair::Kind::kWall) {
+      work_.gradient.noalias() = work_.jacobian.transpose() * pair_.point;
+    } else {
+      work_.gradient.noalias() = 2.0 * work_.jacobian.transpose() * work_.difference;
+    }
+    return work_.gradient;
   }
 
-  Eigen::MatrixXd hessian() const {
-    if (pair_.kind == CentrePair::Kind::kWall) return curvature(pair_.point);
-    return 2.0 * (jacobian_.transpose() * jacobian_ + curvature(difference_));
+  const Eigen::MatrixXd& hessian() const {
+    curvature(pair_.kind == CentrePair::Kind::kWall ? Eigen::Vector3d(pair_.point)
+                                                    : work_.difference);
+    if (pair_.kind == CentrePair::Kind::kWall) {
+      work_.hessian = work_.curvature;
+      return work_.hessian;
+    }
+    work_.hessian.noalias() = work_.jacobian.transpose() * work_.jacobian;
+    work_.hessian += work_.curvature;
+    work_.hessian *= 2.0;
+    return work_.hessian;
   }
 
   /// d/dx (Hess c) along w (local variables): the third derivatives of c contracted with w.
-  Eigen::MatrixXd thirdDerivative(const Eigen::VectorXd& w) const {
-    const int n = static_cast<int>(layout_.variables.size());
-    if (!layout_.curved) return Eigen::MatrixXd::Zero(n, n);
-    if (pair_.kind == CentrePair::Kind::kWall) return third(pair_.point, w);
+  const Eigen::MatrixXd& thirdDerivative(const Eigen::VectorXd& w) const {
+    Eigen::MatrixXd& result = work_.third_derivative;
+    if (pair_.kind == CentrePair::Kind::kWall) {
+      third(pair_.point, w);
+      result = work_.third;
+      return result;
+    }
     // c_ij = 2 sum_m (D_mi D_mj + d_m H_m,ij); differentiating along w gives
     // 2 (G D + D^T G^T + H[D w] + T[d, w]) with column m of G the vector H_m w.
-    Eigen::MatrixXd g(n, 3);
-    for (int m = 0; m < 3; ++m) g.col(m) = curvature(Eigen::Vector3d::Unit(m)) * w;
-    const Eigen::MatrixXd gd = g * jacobian_;
-    return 2.0 * (gd + gd.transpose() + curvature(jacobian_ * w) + third(difference_, w));
+    for (int m = 0; m < 3; ++m) {
+      curvature(Eigen::Vector3d::Unit(m));
+      work_.g.col(m).noalias() = work_.curvature * w;
+    }
+    work_.gd.noalias() = work_.g * work_.jacobian;
+    result = work_.gd;
+    result += work_.gd.transpose();
+    curvature(work_.jacobian * w);
+    result += work_.curvature;
+    third(work_.difference, w);
+    result += work_.third;
+    result *= 2.0;
+    return result;
   }
 
  private:
   void scatterColumns(const Eigen::Matrix3Xd& columns, const std::vector<int>& slots, double sign) {
-    for (size_t c = 0; c < slots.size(); ++c) jacobian_.col(slots[c]) += sign * columns.col(c);
+    for (size_t c = 0; c < slots.size(); ++c) work_.jacobian.col(slots[c]) += sign * columns.col(c);
   }
 
-  /// Hess (w . d(x)) in the local variables.
-  Eigen::MatrixXd curvature(const Eigen::Vector3d& w) const {
-    const int n = static_cast<int>(layout_.variables.size());
-    Eigen::MatrixXd result = Eigen::MatrixXd::Zero(n, n);
-    if (!layout_.curved) return result;
-    scatterBlock(evaluator_.weightedHessian(pair_.a, w), layout_.a_slots, 1.0, result);
+  /// Hess (w . d(x)) in the local variables, into work_.curvature.
+  void curvature(const Eigen::Vector3d& w) const {
+    work_.curvature.setZero();
+    evaluator_.weightedHessian(pair_.a, w, work_.a_block);
+    scatterBlock(work_.a_block, layout_.a_slots, 1.0, work_.curvature);
     if (pair_.kind == CentrePair::Kind::kCentre) {
-      scatterBlock(evaluator_.weightedHessian(pair_.b, w), layout_.b_slots, -1.0, result);
+      evaluator_.weightedHessian(pair_.b, w, work_.b_block);
+      scatterBlock(work_.b_block, layout_.b_slots, -1.0, work_.curvature);
     }
-    return result;
   }
 
-  /// d/dx Hess (w . d(x)) along v (local variables), w fixed.
-  Eigen::MatrixXd third(const Eigen::Vector3d& w, const Eigen::VectorXd& v) const {
-    const int n = static_cast<int>(layout_.variables.size());
-    Eigen::MatrixXd result = Eigen::MatrixXd::Zero(n, n);
-    scatterBlock(evaluator_.weightedThirdDerivative(pair_.a, w, gather(v, layout_.a_slots)),
-                 layout_.a_slots, 1.0, result);
+  /// d/dx Hess (w . d(x)) along v (local variables), w fixed, into work_.third.
+  void third(const Eigen::Vector3d& w, const Eigen::VectorXd& v) const {
+    work_.third.setZero();
+    gather(v, layout_.a_slots, work_.a_direction);
+    evaluator_.weightedThirdDerivative(pair_.a, w, work_.a_direction, work_.a_block);
+    scatterBlock(work_.a_block, layout_.a_slots, 1.0, work_.third);
     if (pair_.kind == CentrePair::Kind::kCentre) {
-      scatterBlock(evaluator_.weightedThirdDerivative(pair_.b, w, gather(v, layout_.b_slots)),
-                   layout_.b_slots, -1.0, result);
+      gather(v, layout_.b_slots, work_.b_direction);
+      evaluator_.weightedThirdDerivative(pair_.b, w, work_.b_direction, work_.b_block);
+      scatterBlock(work_.b_block, layout_.b_slots, -1.0, work_.third);
     }
-    return result;
   }
 
-  static Eigen::VectorXd gather(const Eigen::VectorXd& v, const std::vector<int>& slots) {
-    Eigen::VectorXd result(slots.size());
-    for (size_t s = 0; s < slots.size(); ++s) result(s) = v(slots[s]);
-    return result;
+  static void gather(const Eigen::VectorXd& v, const std::vector<int>& slots,
+                     Eigen::VectorXd& into) {
+    for (size_t s = 0; s < slots.size(); ++s) into(s) = v(slots[s]);
   }
 
   static void scatterBlock(const Eigen::MatrixXd& block, const std::vector<int>& slots, double sign,
@@ -165,8 +218,7 @@ class LocalPair {
   const CentreEvaluator& evaluator_;
   const CentrePair& pair_;
   const PairLayout& layout_;
-  Eigen::Matrix3Xd jacobian_;
-  Eigen::Vector3d difference_;
+  PairWork& work_;
 };
 
 /// The pairs' shared state: layouts and the (mutable) evaluator.
@@ -174,14 +226,23 @@ class PairSet {
  public:
   explicit PairSet(const CentrePairSystem& system)
       : system_(system), evaluator_(system.robot, system.dimension) {
-    for (const CentrePair& pair : system_.pairs) layouts_.push_back(layoutOf(evaluator_, pair));
+    for (const CentrePair& pair : system_.pairs) {
+      layouts_.push_back(layoutOf(evaluator_, pair));
+      work_.push_back(layouts_.back().curved ? PairWork(layouts_.back()) : PairWork());
+    }
   }
   int size() const { return static_cast<int>(system_.pairs.size()); }
   const CentrePairSystem& system() const { return system_; }
   const PairLayout& layout(int k) const { return layouts_[k]; }
   /// Sets the state; then local(k) gives pair k's derivatives there, value(k) its value alone.
   void setState(const double* x) const { evaluator_.setState(x); }
-  LocalPair local(int k) const { return LocalPair(evaluator_, system_.pairs[k], layouts_[k]); }
+  /// Pair k's derivatives at the state set: k must be curved (a robot sphere is involved).
+  LocalPair local(int k) const {
+    return LocalPair(evaluator_, system_.pairs[k], layouts_[k], work_[k]);
+  }
+  /// Curved pair k's buffer for the weights a caller contracts its derivatives with.
+  Eigen::VectorXd& direction(int k) const { return work_[k].direction; }
+  Eigen::VectorXd& mixed(int k) const { return work_[k].mixed; }
   double value(int k) const { return centrePairValue(evaluator_, system_.pairs[k]); }
 
   /// Pair k's gradient at its gradient_entries and its Hessian at its hessian_entries (either
@@ -192,13 +253,13 @@ class PairSet {
     if (layout.curved) {
       const LocalPair local = this->local(k);
       if (gradient) {
-        const Eigen::VectorXd g = local.gradient();
+        const Eigen::VectorXd& g = local.gradient();
         for (size_t e = 0; e < layout.gradient_entries.size(); ++e) {
           gradient[e] = g(layout.gradient_entries[e]);
         }
       }
       if (hessian) {
-        const Eigen::MatrixXd h = local.hessian();
+        const Eigen::MatrixXd& h = local.hessian();
         for (size_t e = 0; e < layout.hessian_entries.size(); ++e) {
           hessian[e] = h(layout.hessian_entries[e].first, layout.hessian_entries[e].second);
         }
@@ -242,6 +303,7 @@ class PairSet {
   CentrePairSystem system_;
   mutable CentreEvaluator evaluator_;
   std::vector<PairLayout> layouts_;
+  mutable std::vector<PairWork> work_;  ///< per pair (empty for a translating one)
 };
 
 /// c(x) of every pair.
@@ -398,16 +460,17 @@ class CentreVelocity : public SmoothFunction {
         }
         continue;
       }
-      Eigen::VectorXd w(n);
+      Eigen::VectorXd& w = pairs_->direction(k);
       for (int i = 0; i < n; ++i) w(i) = weight(i);
       const LocalPair local = pairs_->local(k);
-      const Eigen::VectorXd mixed = local.hessian() * w;  // d^2 (w . v) / d lambda_k dx
+      Eigen::VectorXd& mixed = pairs_->mixed(k);
+      mixed.noalias() = local.hessian() * w;  // d^2 (w . v) / d lambda_k dx
       for (size_t r = 0; r < layout.hessian_rows.size(); ++r) {
         values[slots_[k].mixed[r]] += mixed(layout.hessian_rows[r]);
       }
       const double lambda = z[nx_ + nu_ + k];
       if (!layout.curved || lambda == 0.0) continue;
-      const Eigen::MatrixXd t = local.thirdDerivative(w);
+      const Eigen::MatrixXd& t = local.thirdDerivative(w);
       int s = 0;
       for (int i = 0; i < n; ++i) {
         for (int j = 0; j <= i; ++j) values[slots_[k].third[s++]] += lambda * t(i, j);

@@ -69,36 +69,33 @@ Eigen::Vector3d CentreEvaluator::position(const CollisionCentre& centre) const {
   return p;
 }
 
-Eigen::Matrix3Xd CentreEvaluator::jacobian(const CollisionCentre& centre) const {
+void CentreEvaluator::jacobian(const CollisionCentre& centre, Eigen::Matrix3Xd& into) const {
   if (centre.source == CollisionCentre::Source::kFreeBody) {
-    Eigen::Matrix3Xd j = Eigen::Matrix3Xd::Zero(3, dimension_);
-    for (int d = 0; d < dimension_; ++d) j(d, d) = 1.0;
-    return j;
+    into.setZero(3, dimension_);
+    for (int d = 0; d < dimension_; ++d) into(d, d) = 1.0;
+    return;
   }
-  Eigen::Matrix3Xd j = sphereDerivatives(centre.index).jacobian();
-  if (dimension_ == 2) j.row(2).setZero();
-  return j;
+  into = sphereDerivatives(centre.index).jacobian();
+  if (dimension_ == 2) into.row(2).setZero();
 }
 
-Eigen::MatrixXd CentreEvaluator::weightedHessian(const CollisionCentre& centre,
-                                                 const Eigen::Vector3d& w) const {
+void CentreEvaluator::weightedHessian(const CollisionCentre& centre, const Eigen::Vector3d& w,
+                                      Eigen::MatrixXd& into) const {
   if (centre.source == CollisionCentre::Source::kFreeBody) {
-    return Eigen::MatrixXd::Zero(dimension_, dimension_);
+    into.setZero(dimension_, dimension_);
+    return;
   }
-  Eigen::MatrixXd hessian;
-  sphereDerivatives(centre.index).weightedHessian(inPlane(w), hessian);
-  return hessian;
+  sphereDerivatives(centre.index).weightedHessian(inPlane(w), into);
 }
 
-Eigen::MatrixXd CentreEvaluator::weightedThirdDerivative(const CollisionCentre& centre,
-                                                         const Eigen::Vector3d& w,
-                                                         const Eigen::VectorXd& v) const {
+void CentreEvaluator::weightedThirdDerivative(const CollisionCentre& centre,
+                                              const Eigen::Vector3d& w, const Eigen::VectorXd& v,
+                                              Eigen::MatrixXd& into) const {
   if (centre.source == CollisionCentre::Source::kFreeBody) {
-    return Eigen::MatrixXd::Zero(dimension_, dimension_);
+    into.setZero(dimension_, dimension_);
+    return;
   }
-  Eigen::MatrixXd third;
-  sphereDerivatives(centre.index).weightedThirdDerivative(inPlane(w), v, third);
-  return third;
+  sphereDerivatives(centre.index).weightedThirdDerivative(inPlane(w), v, into);
 }
 
 }  // namespace fesd

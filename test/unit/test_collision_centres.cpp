@@ -21,6 +21,25 @@ std::shared_ptr<const fesd::KinematicModel> panda() {
       fesd_test::loadShippedRobot("panda_spherized.urdf"));
 }
 
+// The evaluator's derivatives as values (it writes them into buffers its callers keep).
+Eigen::Matrix3Xd jacobianOf(const CentreEvaluator& e, const CollisionCentre& centre) {
+  Eigen::Matrix3Xd into;
+  e.jacobian(centre, into);
+  return into;
+}
+Eigen::MatrixXd weightedHessianOf(const CentreEvaluator& e, const CollisionCentre& centre,
+                                  const Eigen::Vector3d& w) {
+  Eigen::MatrixXd into;
+  e.weightedHessian(centre, w, into);
+  return into;
+}
+Eigen::MatrixXd thirdDerivativeOf(const CentreEvaluator& e, const CollisionCentre& centre,
+                                  const Eigen::Vector3d& w, const Eigen::VectorXd& v) {
+  Eigen::MatrixXd into;
+  e.weightedThirdDerivative(centre, w, v, into);
+  return into;
+}
+
 /// x with q in [-1, 1] and one free body after the robot's coordinates.
 Eigen::VectorXd randomState(int nq, std::mt19937& random) {
   return fesd_test::randomVector(nq + 3, random);
@@ -57,23 +76,23 @@ TEST(CollisionCentres, RobotSphereDerivativesAgainstFiniteDifferences) {
       const Eigen::VectorXd moved = at(l);
       CentreEvaluator e(robot, 3);
       e.setState(moved.data());
-      return e.jacobian(centre).transpose() * w;
+      return jacobianOf(e, centre).transpose() * w;
     };
     const auto hessian_along_v = [&](const Eigen::VectorXd& l) -> Eigen::VectorXd {
       const Eigen::VectorXd moved = at(l);
       CentreEvaluator e(robot, 3);
       e.setState(moved.data());
-      return e.weightedHessian(centre, w) * v;
+      return weightedHessianOf(e, centre, w) * v;
     };
     evaluator.setState(x.data());
-    const Eigen::MatrixXd jacobian = evaluator.jacobian(centre);
+    const Eigen::MatrixXd jacobian = jacobianOf(evaluator, centre);
     EXPECT_LT((jacobian - fesd_test::finiteDifferenceJacobian(position, local)).norm(), 1e-7);
-    const Eigen::MatrixXd hessian = evaluator.weightedHessian(centre, w);
+    const Eigen::MatrixXd hessian = weightedHessianOf(evaluator, centre, w);
     EXPECT_LT((hessian - fesd_test::finiteDifferenceJacobian(weighted_gradient, local)).norm(),
               1e-7);
     // d/dx (H[w] v) = T[w, v] (symmetric in its indices): column k of the difference quotient of
     // H[w] v is T[w, e_k] v, which equals T[w, v] e_k.
-    const Eigen::MatrixXd third = evaluator.weightedThirdDerivative(centre, w, v);
+    const Eigen::MatrixXd third = thirdDerivativeOf(evaluator, centre, w, v);
     EXPECT_LT((third - fesd_test::finiteDifferenceJacobian(hessian_along_v, local)).norm(), 1e-7);
     EXPECT_GT(third.norm(), 1e-3) << robot->spheres[sphere].name;  // something to compare
   }
@@ -97,10 +116,9 @@ TEST(CollisionCentres, KeptConfigurationsGiveTheBitsOfAFreshEvaluation) {
     CentreEvaluator fresh(robot, 3);
     fresh.setState(x.data());
     return evaluator.position(centre) == fresh.position(centre) &&
-           evaluator.jacobian(centre) == fresh.jacobian(centre) &&
-           evaluator.weightedHessian(centre, w) == fresh.weightedHessian(centre, w) &&
-           evaluator.weightedThirdDerivative(centre, w, v) ==
-               fresh.weightedThirdDerivative(centre, w, v);
+           jacobianOf(evaluator, centre) == jacobianOf(fresh, centre) &&
+           weightedHessianOf(evaluator, centre, w) == weightedHessianOf(fresh, centre, w) &&
+           thirdDerivativeOf(evaluator, centre, w, v) == thirdDerivativeOf(fresh, centre, w, v);
   };
   CentreEvaluator evaluator(robot, 3);
   int mismatches = 0;
@@ -130,16 +148,16 @@ TEST(CollisionCentres, FreeBodyIsItsStateItsSpheresOffsetAndPlanarScenesDropZ) {
   EXPECT_EQ(planar.position(body), Eigen::Vector3d(x(nq), x(nq + 1), 0.0));
   const CollisionCentre sphere{CollisionCentre::Source::kRobotSphere, 30};
   EXPECT_EQ(planar.position(sphere).z(), 0.0);
-  EXPECT_EQ(planar.jacobian(sphere).row(2).norm(), 0.0);
+  EXPECT_EQ(jacobianOf(planar, sphere).row(2).norm(), 0.0);
   EXPECT_EQ(planar.position(sphere).head(2), spatial.position(sphere).head(2));
-  EXPECT_EQ(spatial.weightedHessian(body, Eigen::Vector3d::Ones()).norm(), 0.0);
+  EXPECT_EQ(weightedHessianOf(spatial, body, Eigen::Vector3d::Ones()).norm(), 0.0);
   // A free body's sphere translates with it: its centre is offset, its derivatives the body's.
   const CollisionCentre sphere_of_body{CollisionCentre::Source::kFreeBody, nq,
                                        Eigen::Vector3d(0.1, -0.2, 0.3)};
   EXPECT_TRUE(spatial.position(sphere_of_body)
                   .isApprox(Eigen::Vector3d(x.tail(3)) + Eigen::Vector3d(0.1, -0.2, 0.3), 1e-15));
   EXPECT_EQ(planar.position(sphere_of_body), Eigen::Vector3d(x(nq) + 0.1, x(nq + 1) - 0.2, 0.0));
-  EXPECT_EQ(spatial.jacobian(sphere_of_body), spatial.jacobian(body));
+  EXPECT_EQ(jacobianOf(spatial, sphere_of_body), jacobianOf(spatial, body));
   EXPECT_EQ(planar.variables(sphere_of_body), planar.variables(body));
 }
 

@@ -46,13 +46,16 @@ class CentreEvaluator {
   void setState(const double* x);
   static constexpr size_t kKinematicsKept = 1024;
   Eigen::Vector3d position(const CollisionCentre& centre) const;
-  /// 3 x variables(centre).size().
-  Eigen::Matrix3Xd jacobian(const CollisionCentre& centre) const;
+  /// The derivatives below are written into their last argument, which keeps its memory when it
+  /// has their size already: the NLP's evaluations call them per pair and stage point.
+  /// dp/dx: 3 x variables(centre).size().
+  void jacobian(const CollisionCentre& centre, Eigen::Matrix3Xd& into) const;
   /// The Hessian of w . p(x) in the centre's variables (0 for a free body).
-  Eigen::MatrixXd weightedHessian(const CollisionCentre& centre, const Eigen::Vector3d& w) const;
+  void weightedHessian(const CollisionCentre& centre, const Eigen::Vector3d& w,
+                       Eigen::MatrixXd& into) const;
   /// The derivative of weightedHessian along v (in the centre's variables, fixed w).
-  Eigen::MatrixXd weightedThirdDerivative(const CollisionCentre& centre, const Eigen::Vector3d& w,
-                                          const Eigen::VectorXd& v) const;
+  void weightedThirdDerivative(const CollisionCentre& centre, const Eigen::Vector3d& w,
+                               const Eigen::VectorXd& v, Eigen::MatrixXd& into) const;
 
  private:
   /// Forward kinematics at one q and the derivatives of the spheres asked for there (the first
