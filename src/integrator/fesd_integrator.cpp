@@ -158,7 +158,7 @@ class FesdIntegrator::Run {
   bool solve(int tenths, int middles, const Eigen::VectorXd& u, double start_time) {
     Part& part = partOf(tenths, middles, kSwitchDetection);
     const bool can_split = tenths + middles < options_.max_step_splits;
-    const bool split_first = options_.split_before_homotopy && can_split && tenths + middles == 0;
+    const bool split_first = options_.split_before_homotopy && can_split;
     Attempt attempt = solvePart(part, u, start_time, !split_first);
     refineIfNeeded(part, tenths, middles, u, start_time, !can_split, attempt);
     const bool timed_out = attempt.report.status == SolveStatus::kTimeout;

@@ -80,8 +80,11 @@ struct SimulationOptions {
   /// on the cluttered scenes such homotopies cost 100-1100 Ipopt iterations a part, for a
   /// reference that is finer than the plan either way).
   bool refine_by_homotopy = true;
-  /// A whole step whose active sets find no solution is split (max_step_splits) before its
-  /// homotopy is tried; its parts take the homotopy as usual. false: the step's homotopy first.
+  /// A step or part whose active sets find no solution is split (max_step_splits) before its
+  /// homotopy is tried: only a part that cannot be split further takes the homotopy. Such a part
+  /// holds more switches than element boundaries, or a contact and the release it causes at one
+  /// instant (the force jumps, which cross-complementarity forbids): the homotopy cannot place
+  /// the second kind either. false: each part's homotopy first.
   bool split_before_homotopy = false;
   /// Solve each part first as the smooth square system of its predicted active set, by Newton's
   /// method, locating switches from violated signs (solveByActiveSets); the homotopy only where
