@@ -67,6 +67,23 @@ const PdsDiscretization::StagePoint& PdsDiscretization::previousPoint(int elemen
   return element == 0 ? start_ : stages_[element - 1].back();
 }
 
+std::vector<int> PdsDiscretization::jumpingForces(const PairModes& modes) const {
+  std::vector<int> forces;
+  if (!steps_free_) return forces;
+  const int elements = std::min(numElements(), static_cast<int>(modes.size()));
+  // At a control interval's start the force before is no part of the cross-complementarity.
+  for (int e = 1; e < elements; ++e) {
+    if (startsInterval(e)) continue;
+    bool contact = false;
+    for (int k = 0; k < nc_; ++k) contact = contact || (!modes[e - 1][k] && modes[e][k]);
+    if (!contact) continue;
+    for (int k = 0; k < nc_; ++k) {
+      if (modes[e - 1][k] && !modes[e][k]) forces.push_back(previousPoint(e).lambda + k);
+    }
+  }
+  return forces;
+}
+
 void PdsDiscretization::addLifting(const StagePoint& point) {
   if (nc_ == 0) return;
   const int row = nlp_.addRows(nc_, 0.0, 0.0);

@@ -52,11 +52,15 @@ Violation firstViolation(const Trajectory& piece, const PairModes& modes, int pa
   return {};
 }
 
-MpccReport solvedReport(const RelaxedMpcc& nlp, std::vector<double> solution) {
+/// `jumping`: the forces its active set left free (jumpingForces), whose products are left out.
+MpccReport solvedReport(const NlpAssembly& nlp, std::vector<double> solution,
+                        const std::vector<int>& jumping) {
   MpccReport report;
   report.status = SolveStatus::kSuccess;
   report.message = "solved as a smooth system with its active set fixed (Newton)";
-  report.complementarity_residual = nlp.complementarityResidual(solution.data());
+  report.complementarity_residual =
+      jumping.empty() ? nlp.complementarityResidual(solution.data())
+                      : nlp.complementarityResidualOfUnknowns(solution.data(), jumping);
   report.objective = nlp.objective(solution.data());
   report.solution = std::move(solution);
   report.polished = true;
@@ -116,7 +120,8 @@ ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vecto
       step.failure = "the NLP has pairs the modes do not decide";
       return step;
     }
-    if (!nlp.fixGivenActiveSet(zero_sides, guess.data())) {
+    const std::vector<int> jumping = discretization.jumpingForces(modes);
+    if (!discretization.nlp().fixGivenActiveSet(zero_sides, guess.data(), jumping)) {
       // A switch estimated at the step's start where the start's data (c, or the force carried
       // over from the previous step) forbids one: it happens in the first element instead.
       bool moved = false;
@@ -151,15 +156,19 @@ ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vecto
       if (violation.boundary == 0) switched_at_start.push_back(pair);
     }
     if (signs_hold) {
-      const double violation = constraintViolation(nlp, x);
+      // A jumping force's couples hold a product its active set leaves (jumpingForces).
+      const double violation =
+          constraintViolation(nlp, x, discretization.nlp().complementarityRowsWith(jumping));
       // The start's data within kNegligibleFixedValue of zero counts as zero, as it did when
       // the active set was fixed: a contact met at the step's start (its gap -1e-10 there, from
       // the step before) leaves a product with its force that no unknown can lower.
-      const double residual = discretization.nlp().complementarityResidualOfUnknowns(x.data());
+      // A force left free where it jumps (jumpingForces) leaves its products out.
+      const double residual =
+          discretization.nlp().complementarityResidualOfUnknowns(x.data(), jumping);
       if (violation <= tolerance && residual <= tolerance) {
         step.outcome =
             modes == predicted ? ActiveSetOutcome::kPredicted : ActiveSetOutcome::kLocated;
-        step.report = solvedReport(nlp, std::move(x));
+        step.report = solvedReport(discretization.nlp(), std::move(x), jumping);
         step.piece = std::move(piece);
         step.modes = std::move(modes);
         return step;

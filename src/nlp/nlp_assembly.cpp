@@ -413,8 +413,13 @@ bool NlpAssembly::fixGivenActiveSet(const std::vector<bool>& left_is_zero, const
   return fixPairs(left_is_zero, std::vector<bool>(left_is_zero.size(), false), x);
 }
 
+bool NlpAssembly::fixGivenActiveSet(const std::vector<bool>& left_is_zero, const double* x,
+                                    const std::vector<int>& left_free) {
+  return fixPairs(left_is_zero, std::vector<bool>(left_is_zero.size(), false), x, left_free);
+}
+
 bool NlpAssembly::fixPairs(const std::vector<bool>& left_is_zero, const std::vector<bool>& biactive,
-                           const double* x) {
+                           const double* x, const std::vector<int>& left_free) {
   releaseActiveSet();
   const int pairs = static_cast<int>(complementarities_.size());
   if (static_cast<int>(left_is_zero.size()) != pairs) return false;
@@ -431,6 +436,7 @@ bool NlpAssembly::fixPairs(const std::vector<bool>& left_is_zero, const std::vec
       continue;
     }
     for (const LinearTerm& t : left_is_zero[p] ? comp.left : comp.right) {
+      if (std::count(left_free.begin(), left_free.end(), t.variable)) continue;
       if (fixed(t.variable)) {
         // Data: it must be (negligibly close to) zero to be the zero side.
         if (!fixedNearZero(t.variable)) return false;
@@ -537,15 +543,18 @@ double NlpAssembly::complementarityResidual(const double* x) const {
   return largestProduct(x, false);
 }
 
-double NlpAssembly::complementarityResidualOfUnknowns(const double* x) const {
-  return largestProduct(x, true);
+double NlpAssembly::complementarityResidualOfUnknowns(const double* x,
+                                                      const std::vector<int>& left_free) const {
+  return largestProduct(x, true, left_free);
 }
 
-double NlpAssembly::largestProduct(const double* x, bool without_negligible_fixed) const {
+double NlpAssembly::largestProduct(const double* x, bool without_negligible_fixed,
+                                   const std::vector<int>& left_out) const {
   const auto sideValue = [&](const LinearExpression& side) {
     double value = 0.0;
     for (const LinearTerm& t : side) {
-      if (!(without_negligible_fixed && fixedNearZero(t.variable))) {
+      const bool out = std::count(left_out.begin(), left_out.end(), t.variable) > 0;
+      if (!out && !(without_negligible_fixed && fixedNearZero(t.variable))) {
         value += t.coefficient * x[t.variable];
       }
     }
@@ -556,6 +565,19 @@ double NlpAssembly::largestProduct(const double* x, bool without_negligible_fixe
     residual = std::max(residual, std::fabs(sideValue(comp.left) * sideValue(comp.right)));
   }
   return residual;
+}
+
+std::vector<int> NlpAssembly::complementarityRowsWith(const std::vector<int>& variables) const {
+  std::vector<int> rows;
+  for (const Complementarity& comp : complementarities_) {
+    for (const LinearExpression* side : {&comp.left, &comp.right}) {
+      const bool has = std::any_of(side->begin(), side->end(), [&](const LinearTerm& t) {
+        return std::count(variables.begin(), variables.end(), t.variable) > 0;
+      });
+      if (has && (rows.empty() || rows.back() != comp.row)) rows.push_back(comp.row);
+    }
+  }
+  return rows;
 }
 
 double NlpAssembly::equalityResidual(const double* x) const {

@@ -284,7 +284,8 @@ NewtonResult solveSquareSystem(const NlpProblem& nlp, std::vector<double>& x,
   return SquareNewton(options).solve(nlp, x);
 }
 
-double constraintViolation(const NlpProblem& nlp, const std::vector<double>& x) {
+double constraintViolation(const NlpProblem& nlp, const std::vector<double>& x,
+                           const std::vector<int>& skipped_rows) {
   const int n = nlp.numVariables(), m = nlp.numConstraints();
   std::vector<double> x_lower(n), x_upper(n), g_lower(m), g_upper(m), g(m);
   nlp.getBounds(x_lower.data(), x_upper.data(), g_lower.data(), g_upper.data());
@@ -296,6 +297,7 @@ double constraintViolation(const NlpProblem& nlp, const std::vector<double>& x) 
   for (int v = 0; v < n; ++v)
     violation = std::max(violation, outside(x[v], x_lower[v], x_upper[v]));
   for (int row = 0; row < m; ++row) {
+    if (std::count(skipped_rows.begin(), skipped_rows.end(), row)) continue;
     violation = std::max(violation, outside(g[row], g_lower[row], g_upper[row]));
   }
   return violation;

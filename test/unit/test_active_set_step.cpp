@@ -180,6 +180,42 @@ TEST(ActiveSetStep, TwoContactsAtOneBoundaryAreLocatedThoughTheyAddAnEquationToo
   EXPECT_NEAR(fast.piece.finalState().tail<2>().norm(), 0.0, 1e-12);
 }
 
+// A disc (R = 0.5) driven at u = (1, -0.2) slides along the floor y >= 0.5 (its force 0.2) into a
+// ramp of slope 1/2 that starts at x = 0: the contact at t = 1 makes the floor's force jump to
+// zero (the projection of u on the ramp, (0.72, 0.36), leaves the floor), a release that
+// cross-complementarity alone forbids at that boundary (one equation too many).
+TEST(ActiveSetStep, AContactThatEndsAnotherAtOnceLetsItsForceJump) {
+  fesd::Scene scene(2);
+  scene.bodies().push_back({"disc", 0.5, Eigen::Vector2d(-1.0, 0.5), true});
+  const Eigen::Vector2d ramp_normal = Eigen::Vector2d(-1.0, 2.0).normalized();
+  scene.walls().push_back({"floor", Eigen::Vector2d(0.0, 1.0), 0.0});
+  scene.walls().push_back({"ramp", ramp_normal, ramp_normal.y() * 0.5 - 0.5});
+  fesd::OcpDefinition ocp;
+  ocp.model = scene.model(scene.allPairs());
+  ocp.initial_state = scene.initialState();
+  ocp.horizon = 1.3;
+  fesd::DiscretizationOptions options;
+  options.num_stages = 3;
+  options.num_elements = 6;
+  const auto discretization = fesd::discretize(ocp, options);
+  const Eigen::Vector2d u(1.0, -0.2);
+  discretization->fixControl(0, u);
+  const std::vector<double> guess = discretization->constantGuess({u});
+  ASSERT_EQ(scene.pairName(scene.allPairs()[0]), "disc/floor");
+  const fesd::PairModes on_the_floor(6, std::vector<bool>{true, false});
+  const fesd::ActiveSetStep fast =
+      fesd::solveByActiveSets(*discretization, guess, on_the_floor, fesd::ActiveSetOptions{});
+  ASSERT_EQ(fast.outcome, fesd::ActiveSetOutcome::kLocated) << fast.failure;
+  ASSERT_EQ(fast.piece.switches.size(), 2u);
+  for (const fesd::SwitchEvent& event : fast.piece.switches) {
+    EXPECT_NEAR(event.time, 1.0, 1e-12);
+  }
+  // Along the floor at (1, 0) until t = 1, then up the ramp at (0.72, 0.36).
+  EXPECT_LT((fast.piece.finalState() - Eigen::Vector2d(0.72 * 0.3, 0.5 + 0.36 * 0.3)).norm(),
+            1e-12);
+  EXPECT_LE(fast.report.complementarity_residual, 1e-9);
+}
+
 TEST(ActiveSetStep, AReleaseAtTheStartOfANewControlKeepsTheOtherStepsEqual) {
   SymmetricPush push;
   // The left pusher touching the object with a force carried over from a push; the new

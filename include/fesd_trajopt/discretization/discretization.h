@@ -67,6 +67,11 @@ class Discretization {
   /// only where the modes change between elements, at that boundary. Empty when the NLP has
   /// pairs the modes do not decide.
   virtual std::vector<bool> activeSetOf(const PairModes& modes) const = 0;
+  /// The variables of zero sides that the active set of `modes` leaves free: a pair's force at
+  /// the end of an element where it lets go at the boundary at which another pair's contact
+  /// begins. The contact makes that force jump to zero, which the cross-complementarity (derived
+  /// for forces that fall continuously) forbids. Empty where the model has no such forces.
+  virtual std::vector<int> jumpingForces(const PairModes& modes) const { return {}; }
   /// Switches `pair`, found violating its signs in mode `was_active`, to the other mode from
   /// element `boundary` on, with whatever else that switch implies for the other pairs.
   virtual void switchPair(PairModes& modes, int pair, int boundary, bool was_active) const = 0;

@@ -53,6 +53,10 @@ class PdsDiscretization : public CollocationDiscretization {
   bool grazesBetweenStages(const Trajectory& piece, int element, int pair,
                            double tolerance) const override;
 
+  /// The last stage's lambda of a pair released at a boundary inside a control interval where
+  /// another pair's contact begins.
+  std::vector<int> jumpingForces(const PairModes& modes) const override;
+
   /// lambda = max(0, -grad c . f / |grad c|^2) is continuous where f is: it falls to zero at a
   /// release, and the velocity does not jump.
   bool releasesAreSmooth() const override { return true; }

@@ -102,8 +102,12 @@ class NlpAssembly : public RelaxedMpcc {
   const std::vector<int>& complementarityRows() const override { return complementarity_rows_; }
   double complementarityResidual(const double* x) const override;
   /// The same with the sides' data (fixed variables) within kNegligibleFixedValue of zero taken
-  /// as zero, as fixGivenActiveSet takes them: what the unknowns leave.
-  double complementarityResidualOfUnknowns(const double* x) const;
+  /// as zero, as fixGivenActiveSet takes them, and the `left_free` variables' terms left out:
+  /// what the unknowns of an active set fixed with those left free leave.
+  double complementarityResidualOfUnknowns(const double* x,
+                                           const std::vector<int>& left_free = {}) const;
+  /// The rows of the complementarities that have a term in one of `variables`.
+  std::vector<int> complementarityRowsWith(const std::vector<int>& variables) const;
   /// Largest |g_i(x) - b_i| over the equality rows (dynamics and algebraic equations): how far
   /// a guess is from satisfying them.
   double equalityResidual(const double* x) const;
@@ -114,6 +118,10 @@ class NlpAssembly : public RelaxedMpcc {
     biactive_sigma_ = sigma;
   }
   bool fixGivenActiveSet(const std::vector<bool>& left_is_zero, const double* x) override;
+  /// The same, leaving the `left_free` variables free (>= 0) although they are on zero sides
+  /// (Discretization::jumpingForces).
+  bool fixGivenActiveSet(const std::vector<bool>& left_is_zero, const double* x,
+                         const std::vector<int>& left_free);
   std::vector<bool> flipBiactivePairs(const double* x) const override;
   void releaseActiveSet() override;
   double biactiveDescent(const double* x, const double* multipliers) const override;
@@ -189,10 +197,11 @@ class NlpAssembly : public RelaxedMpcc {
     return fixed(variable) && std::fabs(x_lower_[variable]) <= kNegligibleFixedValue;
   }
   /// The largest |left * right| over the pairs, `without_negligible_fixed`: leaving out the
-  /// sides' terms fixedNearZero.
-  double largestProduct(const double* x, bool without_negligible_fixed) const;
+  /// sides' terms fixedNearZero and those of the `left_out` variables.
+  double largestProduct(const double* x, bool without_negligible_fixed,
+                        const std::vector<int>& left_out = {}) const;
   bool fixPairs(const std::vector<bool>& left_is_zero, const std::vector<bool>& biactive,
-                const double* x);
+                const double* x, const std::vector<int>& left_free = {});
   // Scratch buffers sized to the largest function term (evaluation is single-threaded per NLP).
   mutable std::vector<double> scratch_values_, scratch_jacobian_, scratch_hessian_,
       scratch_weights_, scratch_inputs_;

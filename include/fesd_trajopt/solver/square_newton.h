@@ -125,7 +125,9 @@ class SquareNewton {
 NewtonResult solveSquareSystem(const NlpProblem& nlp, std::vector<double>& x,
                                const NewtonOptions& options = {});
 
-/// The largest violation at x of the NLP's variable bounds and rows (0 when x is feasible).
-double constraintViolation(const NlpProblem& nlp, const std::vector<double>& x);
+/// The largest violation at x of the NLP's variable bounds and rows but `skipped_rows` (0 when x
+/// is feasible).
+double constraintViolation(const NlpProblem& nlp, const std::vector<double>& x,
+                           const std::vector<int>& skipped_rows = {});
 
 }  // namespace fesd
