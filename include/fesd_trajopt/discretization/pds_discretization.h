@@ -58,7 +58,8 @@ class PdsDiscretization : public CollocationDiscretization {
   std::vector<int> jumpingForces(const PairModes& modes) const override;
 
   /// lambda = max(0, -grad c . f / |grad c|^2) is continuous where f is: it falls to zero at a
-  /// release, and the velocity does not jump.
+  /// release, and the velocity does not jump (unless another pair's contact at that instant
+  /// makes it jump: jumpingForces; such a switch coincides with the contact's).
   bool releasesAreSmooth() const override { return true; }
 
   /// c_k(x) <= tolerance.
