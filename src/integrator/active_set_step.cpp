@@ -108,7 +108,7 @@ ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vecto
                                 const PairModes& predicted, const ActiveSetOptions& options,
                                 SquareNewton& newton) {
   const double tolerance = options.tolerance;
-  RelaxedMpcc& nlp = discretization.nlp();
+  NlpAssembly& nlp = discretization.nlp();
   ActiveSetStep step;
   PairModes modes = predicted;
   std::vector<int> switched_at_start;  ///< pairs the last mode change switched at the start
@@ -121,7 +121,7 @@ ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vecto
       return step;
     }
     const std::vector<int> jumping = discretization.jumpingForces(modes);
-    if (!discretization.nlp().fixGivenActiveSet(zero_sides, guess.data(), jumping)) {
+    if (!nlp.fixGivenActiveSet(zero_sides, guess.data(), jumping)) {
       // A switch estimated at the step's start where the start's data (c, or the force carried
       // over from the previous step) forbids one: it happens in the first element instead.
       bool moved = false;
@@ -157,18 +157,16 @@ ActiveSetStep solveByActiveSets(Discretization& discretization, const std::vecto
     }
     if (signs_hold) {
       // A jumping force's couples hold a product its active set leaves (jumpingForces).
-      const double violation =
-          constraintViolation(nlp, x, discretization.nlp().complementarityRowsWith(jumping));
+      const double violation = constraintViolation(nlp, x, nlp.complementarityRowsWith(jumping));
       // The start's data within kNegligibleFixedValue of zero counts as zero, as it did when
       // the active set was fixed: a contact met at the step's start (its gap -1e-10 there, from
       // the step before) leaves a product with its force that no unknown can lower.
       // A force left free where it jumps (jumpingForces) leaves its products out.
-      const double residual =
-          discretization.nlp().complementarityResidualOfUnknowns(x.data(), jumping);
+      const double residual = nlp.complementarityResidualOfUnknowns(x.data(), jumping);
       if (violation <= tolerance && residual <= tolerance) {
         step.outcome =
             modes == predicted ? ActiveSetOutcome::kPredicted : ActiveSetOutcome::kLocated;
-        step.report = solvedReport(discretization.nlp(), std::move(x), jumping);
+        step.report = solvedReport(nlp, std::move(x), jumping);
         step.piece = std::move(piece);
         step.modes = std::move(modes);
         return step;

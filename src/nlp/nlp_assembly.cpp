@@ -569,6 +569,7 @@ double NlpAssembly::largestProduct(const double* x, bool without_negligible_fixe
 
 std::vector<int> NlpAssembly::complementarityRowsWith(const std::vector<int>& variables) const {
   std::vector<int> rows;
+  if (variables.empty()) return rows;  // every accepted active-set step asks
   for (const Complementarity& comp : complementarities_) {
     for (const LinearExpression* side : {&comp.left, &comp.right}) {
       const bool has = std::any_of(side->begin(), side->end(), [&](const LinearTerm& t) {
