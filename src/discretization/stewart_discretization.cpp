@@ -1,30 +1,12 @@
 #include "fesd_trajopt/discretization/stewart_discretization.h"
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
 
 namespace fesd {
 namespace {
 
 constexpr double kInf = NlpAssembly::kInfinity;
-
-/// ((h_n - h_{n-1}) / h0) * eta on z = (h_{n-1}, h_n, the indicator's blocks), or with
-/// tanh(eta) (Nurkanovic et al. 2024, eq. 31). Every NLP variable enters z once.
-struct EquilibrationResidual {
-  SwitchIndicator indicator;
-  double h0;
-  bool tanh_scaled;
-
-  template <class T>
-  void operator()(const T* z, T* r) const {
-    using std::exp;
-    T eta = indicator(z + 2);
-    // tanh(eta) for eta >= 0 (sums of nonnegative variables), by exp alone.
-    if (tanh_scaled) eta = (1.0 - exp(-2.0 * eta)) / (1.0 + exp(-2.0 * eta));
-    r[0] = (z[1] - z[0]) * (1.0 / h0) * eta;
-  }
-};
 
 }  // namespace
 
@@ -197,12 +179,12 @@ void StewartDiscretization::buildStepEquilibration() {
     for (int start : blocks) {
       for (int i = 0; i < nf_; ++i) eq.inputs.push_back(start + i);
     }
-    const EquilibrationResidual residual{
-        eq.indicator, nominalStep(element),
-        options_.filippov.step_equilibration == StepEquilibration::kTanhIndicator};
     eq.relaxed_row = nlp_.addRelaxedRows(1, options_.filippov.equilibration_relaxation);
-    nlp_.addFunctionTerm(makeAutoDiffFunction(static_cast<int>(eq.inputs.size()), 1, residual),
-                         eq.inputs, -1, {{eq.relaxed_row, 1.0}});
+    nlp_.addFunctionTerm(
+        std::make_shared<StepEquilibrationResidual>(
+            eq.indicator, nominalStep(element),
+            options_.filippov.step_equilibration == StepEquilibration::kTanhIndicator),
+        eq.inputs, -1, {{eq.relaxed_row, 1.0}});
     addStepRegularizer(nlp_, options_, nominalStep(element), eq.inputs[0], eq.inputs[1]);
     equilibration_.push_back(eq);
   }

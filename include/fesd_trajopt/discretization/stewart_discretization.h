@@ -4,37 +4,10 @@
 #include <vector>
 
 #include "fesd_trajopt/discretization/collocation_discretization.h"
+#include "fesd_trajopt/discretization/step_equilibration_residual.h"
 #include "fesd_trajopt/model/stewart_model.h"
 
 namespace fesd {
-
-/// The switch indicator of step equilibration (Nurkanovic et al. 2024, eq. 31) at the boundary
-/// between two elements, on blocks of n_f values (lambda or theta at a point):
-///   eta = prod_i (sum_B lambda_i sum_F lambda_i + sum_B theta_i sum_F theta_i),
-/// B over the earlier element's closure, F over the later one's. The sums list block positions;
-/// the lambda block at the common boundary belongs to both.
-struct SwitchIndicator {
-  int nf;
-  std::vector<int> lambda_backward, lambda_forward, theta_backward, theta_forward;
-
-  template <class T>
-  T sum(const T* blocks, const std::vector<int>& positions, int mode) const {
-    T total = blocks[positions[0] * nf + mode];
-    for (size_t p = 1; p < positions.size(); ++p) total += blocks[positions[p] * nf + mode];
-    return total;
-  }
-  template <class T>
-  T factor(const T* blocks, int mode) const {
-    return sum(blocks, lambda_backward, mode) * sum(blocks, lambda_forward, mode) +
-           sum(blocks, theta_backward, mode) * sum(blocks, theta_forward, mode);
-  }
-  template <class T>
-  T operator()(const T* blocks) const {
-    T eta = factor(blocks, 0);
-    for (int i = 1; i < nf; ++i) eta *= factor(blocks, i);
-    return eta;
-  }
-};
 
 /// The FESD (or, with switch detection off, the standard fixed-step) discretisation of an
 /// OcpDefinition on a Filippov system in Stewart's form (Nurkanovic et al. 2024, Sec. 3) as a
