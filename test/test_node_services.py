@@ -526,6 +526,58 @@ class NodeServices(unittest.TestCase):
         contact = [e for e in response.solution.switches if e.kind == SwitchEvent.CONTACT]
         self.assertAlmostEqual(contact[0].time, 1.0, delta=1e-6)
 
+    def turning_bar_request(self):
+        """A pusher at (-1, 0.3) driven along x into the upper sphere of a bar of two spheres
+        (radius 0.25 at y = +-0.3) that turns: it turns clockwise (test_turning_bodies)."""
+        request = SimulateRequest()
+        request.urdf = '<robot name="empty"><link name="world"/></robot>'
+        request.bodies = [
+            body("pusher", add=True, radius=0.2, initial_position=Point(-1, 0.3, 0),
+                 role=BodySpec.ROLE_ACTUATED),
+            body("bar", add=True, turns=True, initial_position=Point(0, 0, 0),
+                 sphere_offsets=[Point(0, -0.3, 0), Point(0, 0.3, 0)], sphere_radii=[0.25, 0.25])]
+        request.commands = [BodyTrajectory(name="pusher", controls=[Vector3(1.0, 0, 0)])]
+        request.has_horizon, request.horizon = True, 1.5
+        request.has_num_steps, request.num_steps = True, 15
+        return request
+
+    def test_simulate_turns_a_bar_of_spheres_pushed_off_centre(self):
+        response = self.simulate(self.turning_bar_request())
+        self.assertEqual(response.status, SUCCESS, response.message)
+        bar = [b for b in response.solution.bodies if b.name == "bar"][0]
+        self.assertEqual(len(bar.yaws), len(response.solution.times))
+        self.assertEqual(len(bar.sphere_offsets), 2)
+        self.assertGreater(bar.turning_radius, 0.0)
+        self.assertTrue(math.isnan(bar.target_yaw_distance))
+        # The end of an RK4 integration of the written-out projection (test_turning_bodies):
+        # s = rho yaw = -0.2929045355 at t = 1.5, the bar's centre at (0.3330495, -0.0464659).
+        self.assertAlmostEqual(bar.yaws[-1] * bar.turning_radius, -0.2929045355, delta=1e-5)
+        self.assertAlmostEqual(bar.positions[-1].x, 0.3330495, delta=1e-5)
+        self.assertAlmostEqual(bar.positions[-1].y, -0.0464659, delta=1e-5)
+        contact = [e for e in response.solution.switches if e.kind == SwitchEvent.CONTACT]
+        self.assertAlmostEqual(contact[0].time, 0.55, delta=1e-8)
+
+    def test_hostile_turning_bodies_are_refused_and_the_node_keeps_serving(self):
+        def bar(**fields):
+            request = small_default()
+            spec = body("bar", add=True, turns=True, initial_position=Point(0, 5, 0),
+                        sphere_offsets=[Point(0, -0.3, 0), Point(0, 0.3, 0)],
+                        sphere_radii=[0.25, 0.25])
+            for key, value in fields.items():
+                setattr(spec, key, value)
+            request.bodies = [spec]
+            return request
+        self.assert_invalid(bar(sphere_radii=[0.25]), "radii")
+        self.assert_invalid(bar(initial_yaw=float("nan")), "not finite")
+        self.assert_invalid(bar(target_yaw=float("inf"), target_yaw_weight=1.0), "not finite")
+        self.assert_invalid(bar(sphere_radii=[0.25, 0.0]), "radius")
+        self.assert_invalid(bar(sphere_offsets=[Point(0, i, 0) for i in range(5000)],
+                                sphere_radii=[0.1] * 5000), "limit")
+        self.assert_invalid(bar(role=BodySpec.ROLE_ACTUATED), "only passive bodies turn")
+        self.assert_invalid(bar(turns=False, initial_yaw=0.5), "does not turn")
+        self.assert_invalid(bar(add=False, name="object"), "spheres come from")
+        self.assertEqual(self.solve(small_default()).status, SUCCESS)
+
     def block(self, array, *index):
         """One entry of a row-major Float64MultiArray."""
         offset = sum(i * d.stride // (d.size or 1) for i, d in zip(index, array.layout.dim))

@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "fesd_trajopt/planning/bounding_discs.h"
 #include "fesd_trajopt/planning/paths_around.h"
 #include "fesd_trajopt/planning/planned_motion.h"
 #include "fesd_trajopt/planning/pusher_poses.h"
@@ -230,6 +231,20 @@ Eigen::VectorXd endOffset(const PushLeg& leg, size_t k) {
 }
 
 PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs) {
+  if (hasCompositeBodies(task.scene)) {
+    std::vector<ContactPair> disc_pairs;
+    std::vector<int> disc_of;
+    for (const ContactPair& pair : pairs) {
+      const ContactPair disc = boundingDiscPair(task.scene, pair);
+      const auto found = std::find(disc_pairs.begin(), disc_pairs.end(), disc);
+      disc_of.push_back(static_cast<int>(found - disc_pairs.begin()));
+      if (found == disc_pairs.end()) disc_pairs.push_back(disc);
+    }
+    PushPlan plan = planPushes(boundingDiscTask(task), disc_pairs);
+    plan.guess =
+        guessOfSpheres(task, pairs, disc_of, static_cast<int>(disc_pairs.size()), plan.guess);
+    return plan;
+  }
   const Scene& scene = task.scene;
   const int count = static_cast<int>(scene.bodies().size());
   PushPlan plan;

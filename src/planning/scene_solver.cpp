@@ -84,7 +84,7 @@ FirstGuess firstGuess(const SceneTask& task, const std::vector<ContactPair>& can
 /// The first round's pairs, among the pairs in reach (the decisions' modelled ones): all of them
 /// without lazy pairs or with few in reach; for a warm start the previous solution's pairs when
 /// all of them are in reach (so that its NLP can be the same); else those the first guess calls
-/// for. The others in reach are to be checked.
+/// for, and every pair of a body with a target yaw. The others in reach are to be checked.
 void chooseFirstPairs(const SceneTask& task, const std::vector<ContactPair>& candidates,
                       const TrajectoryGuess& guess, const SceneSolveOptions& options,
                       SceneOutcome& outcome) {
@@ -105,6 +105,22 @@ void chooseFirstPairs(const SceneTask& task, const std::vector<ContactPair>& can
                                                        options.first_round_margin, samples);
     chosen = selection.modelled;
     reasons = selection.reasons;
+    // The push plan does not turn bodies: a body with a yaw target gets its pairs in reach
+    // modelled from the first round, so that the NLP can find the pushes that turn it.
+    const std::vector<CollisionBody> bodies = task.scene.collisionBodies();
+    const auto must_turn = [&](int collision_body) {
+      const int body = bodies[collision_body].free_body;
+      return body >= 0 && task.bodies[body].hasYawTarget();
+    };
+    for (size_t c = 0; c < candidates.size(); ++c) {
+      const ContactPair& pair = candidates[c];
+      if (chosen[c] || !(must_turn(pair.body) ||
+                         (pair.kind == ContactPair::Kind::kBody && must_turn(pair.other)))) {
+        continue;
+      }
+      chosen[c] = true;
+      reasons[c] = "a pair of a body with a target yaw (the first guess does not turn it)";
+    }
   }
   size_t k = 0;
   for (PairDecision& decision : outcome.decisions) {
@@ -173,8 +189,18 @@ void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const FirstGuess
     }
   }
   outcome.target_distances.assign(scene.bodies().size(), nan);
+  outcome.target_yaw_distances.assign(scene.bodies().size(), nan);
   for (size_t b = 0; b < scene.bodies().size(); ++b) {
     const BodyTask& t = task.bodies[b];
+    if (t.hasYawTarget()) {
+      const double distance = std::fabs(scene.yaw(static_cast<int>(b), end) - t.target_yaw);
+      outcome.target_yaw_distances[b] = distance;
+      if (distance > targetTolerance(t.target_yaw_weight)) {
+        missed << (missed.tellp() > 0 ? "; " : "") << "body '" << scene.bodies()[b].name
+               << "' ends " << distance << " rad from its target yaw (" << t.target_yaw
+               << "), tolerance " << targetTolerance(t.target_yaw_weight);
+      }
+    }
     if (!t.hasTarget()) continue;
     const double distance = (scene.position(static_cast<int>(b), end) - t.target).norm();
     outcome.target_distances[b] = distance;

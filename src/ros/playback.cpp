@@ -13,13 +13,13 @@ namespace {
 
 constexpr double kPauseSeconds = 1.0;  // between the end of one pass and the next
 
-/// A body's position at time t, linear between the element boundaries.
-geometry_msgs::Point positionAt(const fesd_trajopt::Solution& solution,
-                                const fesd_trajopt::BodyTrajectory& body, double t) {
+/// A body's position and yaw at time t, linear between the element boundaries.
+std::pair<geometry_msgs::Point, double> poseAt(const fesd_trajopt::Solution& solution,
+                                               const fesd_trajopt::BodyTrajectory& body, double t) {
   const std::vector<double>& times = solution.times;
   const size_t k = std::upper_bound(times.begin(), times.end(), t) - times.begin();
-  if (k == 0) return body.positions.front();
-  if (k >= times.size()) return body.positions.back();
+  if (k == 0) return {body.positions.front(), yawAt(body, 0)};
+  if (k >= times.size()) return {body.positions.back(), yawAt(body, times.size() - 1)};
   const double span = times[k] - times[k - 1];
   const double w = span > 0.0 ? (t - times[k - 1]) / span : 1.0;
   const geometry_msgs::Point &a = body.positions[k - 1], &b = body.positions[k];
@@ -27,7 +27,7 @@ geometry_msgs::Point positionAt(const fesd_trajopt::Solution& solution,
   p.x = a.x + w * (b.x - a.x);
   p.y = a.y + w * (b.y - a.y);
   p.z = a.z + w * (b.z - a.z);
-  return p;
+  return {p, yawAt(body, k - 1) + w * (yawAt(body, k) - yawAt(body, k - 1))};
 }
 
 }  // namespace
@@ -67,22 +67,26 @@ void Playback::showFrame() {
   publishJointState(t);
   if (publisher_.getNumSubscribers() == 0) return;
   visualization_msgs::MarkerArray frame;
+  int id = 0;  // the same ids in every frame: each replaces its own marker
   for (size_t b = 0; b < solution_.bodies.size(); ++b) {
     const fesd_trajopt::BodyTrajectory& body = solution_.bodies[b];
     if (body.positions.size() != solution_.times.size()) continue;
-    visualization_msgs::Marker m;
-    m.header.frame_id = solution_.header.frame_id;
-    m.header.stamp = ros::Time::now();
-    m.ns = "playback";
-    m.id = static_cast<int>(b);
-    m.type = planar_ ? visualization_msgs::Marker::CYLINDER : visualization_msgs::Marker::SPHERE;
-    m.action = visualization_msgs::Marker::ADD;
-    m.pose.position = positionAt(solution_, body, t);
-    m.pose.orientation.w = 1.0;
-    m.scale.x = m.scale.y = 2.0 * body.radius;
-    m.scale.z = planar_ ? 0.15 : 2.0 * body.radius;
-    m.color = bodyColor(body.actuated, 1.0);
-    frame.markers.push_back(m);
+    const auto [position, yaw] = poseAt(solution_, body, t);
+    for (const auto& [centre, radius] : bodySpheres(body, position, yaw)) {
+      visualization_msgs::Marker m;
+      m.header.frame_id = solution_.header.frame_id;
+      m.header.stamp = ros::Time::now();
+      m.ns = "playback";
+      m.id = id++;
+      m.type = planar_ ? visualization_msgs::Marker::CYLINDER : visualization_msgs::Marker::SPHERE;
+      m.action = visualization_msgs::Marker::ADD;
+      m.pose.position = centre;
+      m.pose.orientation.w = 1.0;
+      m.scale.x = m.scale.y = 2.0 * radius;
+      m.scale.z = planar_ ? 0.15 : 2.0 * radius;
+      m.color = bodyColor(body.actuated, 1.0);
+      frame.markers.push_back(m);
+    }
   }
   publisher_.publish(frame);
 }

@@ -47,6 +47,68 @@ std::string requestedBounds(const std::vector<double>& values, int dim, Eigen::V
   return "";
 }
 
+/// An added body's spheres from the request (offsets in its frame, radii), its bounding radius.
+std::string requestedSpheres(const fesd_trajopt::BodySpec& spec, const fesd::TaskLimits& limits,
+                             fesd::SceneBody& body) {
+  if (spec.sphere_offsets.size() != spec.sphere_radii.size()) {
+    return " has " + std::to_string(spec.sphere_offsets.size()) + " sphere offsets and " +
+           std::to_string(spec.sphere_radii.size()) + " radii (one radius per sphere)";
+  }
+  if (spec.sphere_offsets.empty()) return "";
+  if (!spec.add) return " is a link of the URDF: its spheres come from there";
+  if (static_cast<int>(spec.sphere_offsets.size()) > limits.max_spheres) {
+    return " has " + std::to_string(spec.sphere_offsets.size()) + " spheres (limit " +
+           std::to_string(limits.max_spheres) + ")";
+  }
+  body.spheres.clear();
+  body.radius = 0.0;
+  for (size_t k = 0; k < spec.sphere_offsets.size(); ++k) {
+    const geometry_msgs::Point& o = spec.sphere_offsets[k];
+    const Eigen::Vector3d offset(o.x, o.y, o.z);
+    const double radius = spec.sphere_radii[k];
+    if (!offset.allFinite() || !(radius > 0.0) || !std::isfinite(radius) ||
+        offset.norm() > limits.max_coordinate) {
+      return " has sphere " + std::to_string(k) +
+             " with a non-finite or too large offset or a radius that is not > 0";
+    }
+    body.spheres.push_back({spec.name + "/sphere_" + std::to_string(k), offset, radius});
+  }
+  if (body.spheres.size() == 1) {  // one sphere: the body itself, at its centre
+    body.position += body.spheres[0].offset.head(body.position.size());
+    body.radius = body.spheres[0].radius;
+    body.spheres.clear();
+  }
+  return "";
+}
+
+/// A body's spheres and turning from the request: "" or why not (starting with a space).
+std::string applyTurning(const fesd_trajopt::BodySpec& spec, const fesd::TaskLimits& limits,
+                         fesd::SceneBody& body, fesd::BodyTask& task) {
+  for (const double value :
+       {spec.initial_yaw, spec.target_yaw, spec.target_yaw_weight, spec.turning_radius}) {
+    if (!std::isfinite(value)) return ": a yaw, yaw weight or turning radius is not finite";
+  }
+  if (spec.target_yaw_weight < 0.0 || spec.turning_radius < 0.0) {
+    return ": target_yaw_weight and turning_radius must be >= 0";
+  }
+  const std::string spheres = requestedSpheres(spec, limits, body);
+  if (!spheres.empty()) return spheres;
+  if (!spec.turns) {
+    if (spec.initial_yaw != 0.0 || spec.target_yaw_weight > 0.0 || spec.turning_radius > 0.0) {
+      return " has a yaw, a target yaw or a turning radius but does not turn (set turns)";
+    }
+    if (!body.spheres.empty()) body.radius = fesd::boundingRadius(body);
+    return "";
+  }
+  if (body.actuated) return " turns and is actuated: only passive bodies turn";
+  body.yaw = spec.initial_yaw;
+  fesd::turnAboutPressureCentre(body, spec.turning_radius);
+  body.radius = fesd::boundingRadius(body);
+  task.target_yaw = spec.target_yaw;
+  task.target_yaw_weight = spec.target_yaw_weight;
+  return "";
+}
+
 /// The request's allowed_pairs as the task's; "" or why not.
 std::string allowPairs(const std::vector<fesd_trajopt::ContactPair>& allowed,
                        fesd::SceneTask& task) {
@@ -157,8 +219,9 @@ std::string applySceneFields(const NodeConfig& config, const SceneFields& reques
       if (b >= 0) {
         return who + " already exists; set add only for new bodies";
       }
-      if (!(spec.radius > 0.0)) {
-        return who + " is added with radius " + std::to_string(spec.radius) + " (must be > 0)";
+      if (!(spec.radius > 0.0) && spec.sphere_offsets.empty()) {
+        return who + " is added with radius " + std::to_string(spec.radius) +
+               " (must be > 0) and no spheres";
       }
       task.scene.bodies().push_back(
           {spec.name, spec.radius, coordinates(spec.initial_position, dim), false});
@@ -191,6 +254,8 @@ std::string applySceneFields(const NodeConfig& config, const SceneFields& reques
       t.target = coordinates(spec.target, dim);
       t.target_weight = spec.target_weight;
     }
+    const std::string turning = applyTurning(spec, config.limits, body, t);
+    if (!turning.empty()) return who + turning;
     for (const auto& [values, bounds, name] :
          {std::make_tuple(&spec.workspace_lower, &t.workspace_lower, "workspace_lower"),
           std::make_tuple(&spec.workspace_upper, &t.workspace_upper, "workspace_upper")}) {

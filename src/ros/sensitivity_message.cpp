@@ -40,6 +40,7 @@ std::vector<std::string> sceneStateNames(const fesd::Scene& scene) {
   for (int j = 0; j < scene.numJoints(); ++j) names.push_back(scene.robot().joints[j].name);
   for (const fesd::SceneBody& body : scene.bodies()) {
     for (int d = 0; d < scene.dimension(); ++d) names.push_back(body.name + "/" + kAxes[d]);
+    if (body.turns) names.push_back(body.name + "/s");  // rho yaw
   }
   return names;
 }

@@ -64,24 +64,52 @@ double targetDistance(const std::vector<double>& distances, int body) {
                                                    : std::numeric_limits<double>::quiet_NaN();
 }
 
-fesd_trajopt::BodyTrajectory bodyTrajectory(const fesd::SceneBody& body, double target_distance,
-                                            const fesd::Trajectory& trajectory, int state_index,
-                                            int control_index) {
-  const int dim = static_cast<int>(body.position.size());
+fesd_trajopt::BodyTrajectory bodyTrajectory(const fesd::Scene& scene, int b,
+                                            const fesd::SceneOutcome& outcome) {
+  const fesd::SceneBody& body = scene.bodies()[b];
+  const int dim = scene.dimension();
   fesd_trajopt::BodyTrajectory message;
   message.name = body.name;
   message.radius = body.radius;
   message.actuated = body.actuated;
-  message.target_distance = target_distance;
-  for (const Eigen::VectorXd& x : trajectory.states) {
-    message.positions.push_back(point(x.segment(state_index, dim)));
+  message.target_distance = targetDistance(outcome.target_distances, b);
+  message.target_yaw_distance = targetDistance(outcome.target_yaw_distances, b);
+  message.turning_radius = scene.turningRadius(b);
+  for (const fesd::FreeBodySphere& sphere : body.spheres) {
+    message.sphere_offsets.push_back(point(sphere.offset.head(dim)));
+    message.sphere_radii.push_back(sphere.radius);
+  }
+  for (const Eigen::VectorXd& x : outcome.trajectory.states) {
+    message.positions.push_back(point(x.segment(scene.stateIndex(b), dim)));
+    if (body.turns) message.yaws.push_back(scene.yaw(b, x));
   }
   if (body.actuated) {
-    for (const Eigen::VectorXd& u : trajectory.controls) {
-      message.controls.push_back(xyz<geometry_msgs::Vector3>(u.segment(control_index, dim)));
+    for (const Eigen::VectorXd& u : outcome.trajectory.controls) {
+      message.controls.push_back(
+          xyz<geometry_msgs::Vector3>(u.segment(scene.controlIndex(b), dim)));
     }
   }
   return message;
+}
+
+std::vector<std::pair<geometry_msgs::Point, double>> bodySpheres(
+    const fesd_trajopt::BodyTrajectory& body, const geometry_msgs::Point& at, double yaw) {
+  if (body.sphere_offsets.empty()) return {{at, body.radius}};
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  std::vector<std::pair<geometry_msgs::Point, double>> spheres;
+  for (size_t k = 0; k < body.sphere_offsets.size(); ++k) {
+    const geometry_msgs::Point& o = body.sphere_offsets[k];
+    geometry_msgs::Point centre;
+    centre.x = at.x + c * o.x - s * o.y;
+    centre.y = at.y + s * o.x + c * o.y;
+    centre.z = at.z + o.z;
+    spheres.emplace_back(centre, body.sphere_radii[k]);
+  }
+  return spheres;
+}
+
+double yawAt(const fesd_trajopt::BodyTrajectory& body, size_t k) {
+  return body.yaws.empty() ? 0.0 : body.yaws[std::min(k, body.yaws.size() - 1)];
 }
 
 std_msgs::ColorRGBA bodyColor(bool actuated, double alpha) {
@@ -244,9 +272,7 @@ fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
   fillCommon(trajectory, report, solution);
   solution.statistics.guess_residual = outcome.guess_residual;  // NaN: no first guess
   for (int b = 0; b < static_cast<int>(scene.bodies().size()); ++b) {
-    solution.bodies.push_back(
-        bodyTrajectory(scene.bodies()[b], targetDistance(outcome.target_distances, b), trajectory,
-                       scene.stateIndex(b), scene.controlIndex(b)));
+    solution.bodies.push_back(bodyTrajectory(scene, b, outcome));
   }
   for (const fesd::PairDecision& decision : decisions) {
     (decision.modelled  ? solution.modeled_pairs
@@ -299,13 +325,32 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
   auto body_color = [&](size_t b, double alpha) {
     return bodyColor(scene.bodies()[b].actuated, alpha);
   };
+  // A body as its spheres at boundary k (or at `at`, turned by `yaw`), a turning one with an
+  // arrow along its heading.
+  auto body_at = [&](const std::string& ns, const fesd_trajopt::BodyTrajectory& body,
+                     const geometry_msgs::Point& at, double yaw, const std_msgs::ColorRGBA& c) {
+    for (const auto& [centre, radius] : bodySpheres(body, at, yaw)) disc(ns, centre, radius, c);
+    if (body.yaws.empty()) return;
+    visualization_msgs::Marker heading = marker(ns, visualization_msgs::Marker::ARROW);
+    geometry_msgs::Point tip = at;
+    tip.x += body.radius * std::cos(yaw);
+    tip.y += body.radius * std::sin(yaw);
+    heading.points = {at, tip};
+    heading.scale.x = 0.05 * body.radius;
+    heading.scale.y = 0.12 * body.radius;
+    heading.color = color(0.1, 0.1, 0.1, c.a);
+    markers.markers.push_back(heading);
+  };
   for (size_t b = 0; b < solution.bodies.size(); ++b) {
     const fesd_trajopt::BodyTrajectory& body = solution.bodies[b];
     if (body.positions.empty()) continue;
-    disc("bodies_start", body.positions.front(), body.radius, body_color(b, 1.0));
-    disc("bodies_final", body.positions.back(), body.radius, body_color(b, 0.6));
-    if (task.bodies[b].target.size() && task.bodies[b].target_weight > 0.0) {
-      disc("targets", point(task.bodies[b].target), body.radius, color(0.2, 0.8, 0.3, 0.3));
+    body_at("bodies_start", body, body.positions.front(), yawAt(body, 0), body_color(b, 1.0));
+    body_at("bodies_final", body, body.positions.back(), yawAt(body, body.positions.size() - 1),
+            body_color(b, 0.6));
+    const fesd::BodyTask& t = task.bodies[b];
+    if (t.hasTarget()) {
+      body_at("targets", body, point(t.target), t.hasYawTarget() ? t.target_yaw : yawAt(body, 0),
+              color(0.2, 0.8, 0.3, 0.3));
     }
     visualization_msgs::Marker path = marker("paths", visualization_msgs::Marker::LINE_STRIP);
     path.points = body.positions;
@@ -322,7 +367,8 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
     int touching = 0;
     for (size_t b = 0; b < solution.bodies.size(); ++b) {
       const geometry_msgs::Point& p = solution.bodies[b].positions[k];
-      disc("switch_configurations", p, solution.bodies[b].radius, body_color(b, 0.15));
+      body_at("switch_configurations", solution.bodies[b], p, yawAt(solution.bodies[b], k),
+              body_color(b, 0.15));
       if (solution.bodies[b].name == event.first || solution.bodies[b].name == event.second) {
         label_at.x += p.x;
         label_at.y += p.y;

@@ -36,12 +36,18 @@ geometry_msgs::Point point(const Eigen::VectorXd& p);
 /// A body's distance from its target, NaN when it has none (or the outcome was not judged).
 double targetDistance(const std::vector<double>& distances, int body);
 
-/// A body's part of a solution: name, radius, role, distance from its target, positions at the
-/// element boundaries (from the states at state_index) and, if actuated, its controls (at
-/// control_index).
-fesd_trajopt::BodyTrajectory bodyTrajectory(const fesd::SceneBody& body, double target_distance,
-                                            const fesd::Trajectory& trajectory, int state_index,
-                                            int control_index);
+/// Body b's part of a solution: name, radius, role, spheres, distances from its targets
+/// (position, yaw), positions (and a turning body's yaws) at the element boundaries and, if
+/// actuated, its controls.
+fesd_trajopt::BodyTrajectory bodyTrajectory(const fesd::Scene& scene, int b,
+                                            const fesd::SceneOutcome& outcome);
+
+/// A body's collision spheres with it at `at` and turned by `yaw` about z (itself when it is one
+/// sphere): (centre, radius) each, for rviz.
+std::vector<std::pair<geometry_msgs::Point, double>> bodySpheres(
+    const fesd_trajopt::BodyTrajectory& body, const geometry_msgs::Point& at, double yaw);
+/// A body's yaw at element boundary k (0 for one that does not turn).
+double yawAt(const fesd_trajopt::BodyTrajectory& body, size_t k);
 
 /// The parts every solution has: times, steps, full states, statistics.
 void fillCommon(const fesd::Trajectory& trajectory, const fesd::MpccReport& report,

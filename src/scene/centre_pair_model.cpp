@@ -11,7 +11,7 @@ namespace {
 struct PairLayout {
   std::vector<int> variables;  ///< ascending state indices
   std::vector<int> a_slots, b_slots;
-  bool curved = false;  ///< a robot sphere is involved: c has third derivatives
+  bool curved = false;  ///< a robot sphere or a turning body is involved: c has third derivatives
   /// The structural nonzeros in local variables (addStructuralEntries): of grad c, of Hess c
   /// (both triangles) and the rows of Hess c that hold any.
   std::vector<int> gradient_entries, hessian_rows;
@@ -69,11 +69,11 @@ PairLayout layoutOf(const CentreEvaluator& evaluator, const CentrePair& pair) {
   };
   for (int v : a) layout.a_slots.push_back(slot(v));
   for (int v : b) layout.b_slots.push_back(slot(v));
-  const auto is_sphere = [](const CollisionCentre& c) {
-    return c.source == CollisionCentre::Source::kRobotSphere;
+  const auto is_curved = [](const CollisionCentre& c) {
+    return c.source != CollisionCentre::Source::kFreeBody;
   };
   layout.curved =
-      is_sphere(pair.a) || (pair.kind == CentrePair::Kind::kCentre && is_sphere(pair.b));
+      is_curved(pair.a) || (pair.kind == CentrePair::Kind::kCentre && is_curved(pair.b));
   addStructuralEntries(pair, layout);
   return layout;
 }
@@ -236,7 +236,7 @@ class PairSet {
   const PairLayout& layout(int k) const { return layouts_[k]; }
   /// Sets the state; then local(k) gives pair k's derivatives there, value(k) its value alone.
   void setState(const double* x) const { evaluator_.setState(x); }
-  /// Pair k's derivatives at the state set: k must be curved (a robot sphere is involved).
+  /// Pair k's derivatives at the state set: k must be curved (a sphere or a turning body).
   LocalPair local(int k) const {
     return LocalPair(evaluator_, system_.pairs[k], layouts_[k], work_[k]);
   }

@@ -1,5 +1,6 @@
 #include "fesd_trajopt/scene/collision_centres.h"
 
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <string_view>
@@ -9,10 +10,35 @@ namespace fesd {
 CentreEvaluator::CentreEvaluator(std::shared_ptr<const KinematicModel> robot, int dimension)
     : robot_(std::move(robot)), dimension_(dimension) {}
 
+namespace {
+
+/// A turning body's yaw and its offset turned by it (about z; z stays).
+struct TurnedOffset {
+  double inverse_radius;
+  Eigen::Vector3d turned;  ///< R(yaw) offset
+  Eigen::Vector3d normal;  ///< d/dyaw R(yaw) offset = (-turned.y, turned.x, 0)
+};
+
+TurnedOffset turnedOffset(const CollisionCentre& centre, const double* x, int dimension) {
+  TurnedOffset result;
+  result.inverse_radius = 1.0 / centre.turning_radius;
+  const double yaw = x[centre.index + dimension] * result.inverse_radius;
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  const Eigen::Vector3d& o = centre.offset;
+  result.turned = Eigen::Vector3d(c * o.x() - s * o.y(), s * o.x() + c * o.y(), o.z());
+  result.normal = Eigen::Vector3d(-result.turned.y(), result.turned.x(), 0.0);
+  return result;
+}
+
+}  // namespace
+
 std::vector<int> CentreEvaluator::variables(const CollisionCentre& centre) const {
   if (centre.source == CollisionCentre::Source::kRobotSphere) return robot_->chainOf(centre.index);
   std::vector<int> result;
   for (int d = 0; d < dimension_; ++d) result.push_back(centre.index + d);
+  if (centre.source == CollisionCentre::Source::kTurningBody) {
+    result.push_back(centre.index + dimension_);
+  }
   return result;
 }
 
@@ -64,15 +90,23 @@ Eigen::Vector3d CentreEvaluator::position(const CollisionCentre& centre) const {
   if (centre.source == CollisionCentre::Source::kRobotSphere) {
     return inPlane(current_->data.sphere_centres[centre.index]);
   }
+  const Eigen::Vector3d offset = centre.source == CollisionCentre::Source::kTurningBody
+                                     ? turnedOffset(centre, free_state_, dimension_).turned
+                                     : centre.offset;
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  for (int d = 0; d < dimension_; ++d) p(d) = free_state_[centre.index + d] + centre.offset(d);
+  for (int d = 0; d < dimension_; ++d) p(d) = free_state_[centre.index + d] + offset(d);
   return p;
 }
 
 void CentreEvaluator::jacobian(const CollisionCentre& centre, Eigen::Matrix3Xd& into) const {
-  if (centre.source == CollisionCentre::Source::kFreeBody) {
-    into.setZero(3, dimension_);
+  if (centre.source != CollisionCentre::Source::kRobotSphere) {
+    const int n = static_cast<int>(variables(centre).size());
+    into.setZero(3, n);
     for (int d = 0; d < dimension_; ++d) into(d, d) = 1.0;
+    if (n > dimension_) {
+      const TurnedOffset t = turnedOffset(centre, free_state_, dimension_);
+      into.col(dimension_) = inPlane(t.normal * t.inverse_radius);
+    }
     return;
   }
   into = sphereDerivatives(centre.index).jacobian();
@@ -81,8 +115,14 @@ void CentreEvaluator::jacobian(const CollisionCentre& centre, Eigen::Matrix3Xd& 
 
 void CentreEvaluator::weightedHessian(const CollisionCentre& centre, const Eigen::Vector3d& w,
                                       Eigen::MatrixXd& into) const {
-  if (centre.source == CollisionCentre::Source::kFreeBody) {
-    into.setZero(dimension_, dimension_);
+  if (centre.source != CollisionCentre::Source::kRobotSphere) {
+    const int n = static_cast<int>(variables(centre).size());
+    into.setZero(n, n);
+    if (n > dimension_) {  // only the turn enters nonlinearly: d2/ds2 R offset = -R offset / rho^2
+      const TurnedOffset t = turnedOffset(centre, free_state_, dimension_);
+      const Eigen::Vector3d planar(t.turned.x(), t.turned.y(), 0.0);
+      into(dimension_, dimension_) = -inPlane(w).dot(planar) * t.inverse_radius * t.inverse_radius;
+    }
     return;
   }
   sphereDerivatives(centre.index).weightedHessian(inPlane(w), into);
@@ -91,8 +131,14 @@ void CentreEvaluator::weightedHessian(const CollisionCentre& centre, const Eigen
 void CentreEvaluator::weightedThirdDerivative(const CollisionCentre& centre,
                                               const Eigen::Vector3d& w, const Eigen::VectorXd& v,
                                               Eigen::MatrixXd& into) const {
-  if (centre.source == CollisionCentre::Source::kFreeBody) {
-    into.setZero(dimension_, dimension_);
+  if (centre.source != CollisionCentre::Source::kRobotSphere) {
+    const int n = static_cast<int>(variables(centre).size());
+    into.setZero(n, n);
+    if (n > dimension_) {  // d3/ds3 R offset = -(dR/dyaw) offset / rho^3
+      const TurnedOffset t = turnedOffset(centre, free_state_, dimension_);
+      into(dimension_, dimension_) = -inPlane(w).dot(t.normal) * t.inverse_radius *
+                                     t.inverse_radius * t.inverse_radius * v(dimension_);
+    }
     return;
   }
   sphereDerivatives(centre.index).weightedThirdDerivative(inPlane(w), v, into);

@@ -16,23 +16,24 @@ bool involves(const std::vector<CollisionBody>& bodies, const ContactPair& pair,
 /// their start.
 Eigen::VectorXd fullState(const SceneTask& full, const MovingPart& part,
                           const Eigen::VectorXd& moving) {
-  const int dim = full.scene.dimension();
   Eigen::VectorXd state = full.scene.initialState();
   state.head(full.scene.numJoints()) = moving.head(full.scene.numJoints());
   for (size_t i = 0; i < part.bodies.size(); ++i) {
-    state.segment(full.scene.stateIndex(part.bodies[i]), dim) =
-        moving.segment(part.task.scene.stateIndex(static_cast<int>(i)), dim);
+    const int body = part.bodies[i];
+    state.segment(full.scene.stateIndex(body), full.scene.coordinates(body)) = moving.segment(
+        part.task.scene.stateIndex(static_cast<int>(i)), full.scene.coordinates(body));
   }
   return state;
 }
 
 /// Per state component of the part, its index in the full scene's state.
 std::vector<int> fullStateIndices(const SceneTask& full, const MovingPart& part) {
-  const int dim = full.scene.dimension();
   std::vector<int> indices;
   for (int j = 0; j < full.scene.numJoints(); ++j) indices.push_back(j);
   for (const int body : part.bodies) {
-    for (int d = 0; d < dim; ++d) indices.push_back(full.scene.stateIndex(body) + d);
+    for (int d = 0; d < full.scene.coordinates(body); ++d) {
+      indices.push_back(full.scene.stateIndex(body) + d);
+    }
   }
   return indices;
 }
@@ -60,12 +61,12 @@ Eigen::MatrixXd pairRows(const std::vector<int>& sources, const Eigen::MatrixXd&
 
 Eigen::VectorXd partState(const SceneTask& full, const MovingPart& part,
                           const Eigen::VectorXd& state) {
-  const int dim = full.scene.dimension();
   Eigen::VectorXd moving(part.task.scene.stateSize());
   moving.head(full.scene.numJoints()) = state.head(full.scene.numJoints());
   for (size_t i = 0; i < part.bodies.size(); ++i) {
-    moving.segment(part.task.scene.stateIndex(static_cast<int>(i)), dim) =
-        state.segment(full.scene.stateIndex(part.bodies[i]), dim);
+    const int body = part.bodies[i];
+    moving.segment(part.task.scene.stateIndex(static_cast<int>(i)), full.scene.coordinates(body)) =
+        state.segment(full.scene.stateIndex(body), full.scene.coordinates(body));
   }
   return moving;
 }

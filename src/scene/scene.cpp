@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <Eigen/Geometry>
+
 namespace fesd {
 namespace {
 
@@ -14,6 +16,55 @@ Eigen::Vector3d padded(const Eigen::VectorXd& v) {
 }
 
 }  // namespace
+
+Footprint footprintOf(const SceneBody& body) {
+  Footprint footprint;
+  for (const FreeBodySphere& sphere : body.spheres) {
+    footprint.centres.push_back(sphere.offset.head<2>());
+    footprint.radii.push_back(sphere.radius);
+  }
+  if (body.spheres.empty()) footprint = {{Eigen::Vector2d::Zero()}, {body.radius}};
+  return footprint;
+}
+
+namespace {}  // namespace
+
+double boundingRadius(const SceneBody& body) {
+  if (body.spheres.empty()) return body.radius;
+  double radius = 0.0;
+  for (const FreeBodySphere& sphere : body.spheres) {
+    radius = std::max(radius, sphere.offset.norm() + sphere.radius);
+  }
+  return radius;
+}
+
+void turnAboutPressureCentre(SceneBody& body, double turning_radius) {
+  const Eigen::Vector2d centre = pressureCentre(footprintOf(body));
+  for (FreeBodySphere& sphere : body.spheres) sphere.offset.head<2>() -= centre;
+  body.position.head<2>() += Eigen::Rotation2Dd(body.yaw) * centre;
+  body.turns = true;
+  body.turning_radius = turning_radius > 0.0
+                            ? turning_radius
+                            : limitSurfaceRadius(footprintOf(body), Eigen::Vector2d::Zero());
+}
+
+std::string turningBodyProblem(const SceneBody& body) {
+  if (!body.turns) return "";
+  if (body.actuated) return "turns and is actuated: only passive bodies turn";
+  if (!std::isfinite(body.yaw)) return "has a yaw that is not finite";
+  if (!(body.turning_radius > 0.0) || !std::isfinite(body.turning_radius)) {
+    return "needs a finite turning radius > 0 (limitSurfaceRadius of its footprint)";
+  }
+  const Footprint footprint = footprintOf(body);
+  double extent = 0.0;
+  for (size_t k = 0; k < footprint.centres.size(); ++k) {
+    extent = std::max(extent, footprint.centres[k].norm() + footprint.radii[k]);
+  }
+  if (pressureCentre(footprint).norm() > 1e-6 * extent) {
+    return "turns about its position, which must be its spheres' centre of pressure";
+  }
+  return "";
+}
 
 bool namesSide(const std::string& name, const std::string& side) {
   return side == name || side.rfind(name + "/sphere_", 0) == 0;
@@ -32,6 +83,26 @@ Scene robotInScene(std::shared_ptr<const KinematicModel> robot, Eigen::VectorXd 
   return scene;
 }
 
+int Scene::stateSize() const {
+  return stateIndex(static_cast<int>(bodies_.size()));
+}
+
+int Scene::stateIndex(int body) const {
+  int index = numJoints();
+  for (int b = 0; b < body; ++b) index += coordinates(b);
+  return index;
+}
+
+double Scene::turningRadius(int body) const {
+  const SceneBody& b = bodies_.at(body);
+  return b.turns ? b.turning_radius : 0.0;
+}
+
+double Scene::yaw(int body, const Eigen::VectorXd& x) const {
+  if (!bodies_.at(body).turns) return 0.0;
+  return x(stateIndex(body) + dimension_) / turningRadius(body);
+}
+
 int Scene::controlSize() const {
   int actuated = 0;
   for (const SceneBody& body : bodies_) actuated += body.actuated;
@@ -48,8 +119,9 @@ int Scene::controlIndex(int body) const {
 Eigen::VectorXd Scene::initialState() const {
   Eigen::VectorXd x(stateSize());
   x.head(numJoints()) = q0_;
-  for (size_t b = 0; b < bodies_.size(); ++b) {
-    x.segment(stateIndex(static_cast<int>(b)), dimension_) = bodies_[b].position;
+  for (int b = 0; b < static_cast<int>(bodies_.size()); ++b) {
+    x.segment(stateIndex(b), dimension_) = bodies_[b].position;
+    if (bodies_[b].turns) x(stateIndex(b) + dimension_) = turningRadius(b) * bodies_[b].yaw;
   }
   return x;
 }
@@ -57,8 +129,9 @@ Eigen::VectorXd Scene::initialState() const {
 void Scene::setInitialState(const Eigen::VectorXd& x) {
   if (x.size() != stateSize()) throw std::invalid_argument("Scene: a state of the wrong size");
   q0_ = x.head(numJoints());
-  for (size_t b = 0; b < bodies_.size(); ++b) {
-    bodies_[b].position = x.segment(stateIndex(static_cast<int>(b)), dimension_);
+  for (int b = 0; b < static_cast<int>(bodies_.size()); ++b) {
+    bodies_[b].position = x.segment(stateIndex(b), dimension_);
+    bodies_[b].yaw = yaw(b, x);
   }
 }
 
@@ -66,7 +139,11 @@ std::vector<CollisionBody> Scene::collisionBodies() const {
   std::vector<CollisionBody> result;
   for (int b = 0; b < static_cast<int>(bodies_.size()); ++b) {
     const SceneBody& body = bodies_[b];
-    const CollisionCentre centre{CollisionCentre::Source::kFreeBody, stateIndex(b)};
+    CollisionCentre centre{CollisionCentre::Source::kFreeBody, stateIndex(b)};
+    if (body.turns) {
+      centre.source = CollisionCentre::Source::kTurningBody;
+      centre.turning_radius = turningRadius(b);
+    }
     if (body.spheres.empty()) result.push_back({body.name, body.radius, centre, -1, b});
     for (const FreeBodySphere& sphere : body.spheres) {
       CollisionCentre moved = centre;
@@ -257,6 +334,8 @@ std::shared_ptr<const DcsModel> Scene::model(const std::vector<ContactPair>& pai
     if (body.position.size() != dimension_) {
       throw std::invalid_argument("Scene: body '" + body.name + "' has the wrong dimension");
     }
+    const std::string turning = turningBodyProblem(body);
+    if (!turning.empty()) throw std::invalid_argument("Scene: body '" + body.name + "' " + turning);
   }
   CentrePairSystem system;
   system.robot = robot_;

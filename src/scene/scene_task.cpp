@@ -6,6 +6,8 @@
 #include <sstream>
 #include <tuple>
 
+#include <Eigen/Geometry>
+
 #include "fesd_trajopt/function/quadratic_function.h"
 #include "fesd_trajopt/kinematics/reach.h"
 #include "fesd_trajopt/nlp/nlp_assembly.h"
@@ -50,12 +52,20 @@ struct Box {
 
 Box reachableBox(const SceneTask& task, int free_body, const Eigen::Vector3d& offset3,
                  double reach) {
-  const Eigen::VectorXd offset = offset3.head(task.scene.dimension());
-  const Eigen::VectorXd centre = task.scene.bodies()[free_body].position + offset;
+  const SceneBody& body = task.scene.bodies()[free_body];
+  const int dim = task.scene.dimension();
+  Eigen::VectorXd offset = offset3.head(dim);
+  // A turning body's sphere: its offset turned by the start yaw, anywhere on its circle later.
+  Eigen::VectorXd slack = Eigen::VectorXd::Zero(dim);
+  if (body.turns) {
+    offset.head<2>() = Eigen::Rotation2Dd(body.yaw) * offset3.head<2>();
+    slack.head<2>().setConstant(offset3.head<2>().norm());
+  }
+  const Eigen::VectorXd centre = body.position + offset;
   const BodyTask& t = task.bodies[free_body];
   Box box{centre.array() - reach, centre.array() + reach};
-  if (t.workspace_lower.size()) box.low = box.low.cwiseMax(t.workspace_lower + offset);
-  if (t.workspace_upper.size()) box.high = box.high.cwiseMin(t.workspace_upper + offset);
+  if (t.workspace_lower.size()) box.low = box.low.cwiseMax(t.workspace_lower + offset - slack);
+  if (t.workspace_upper.size()) box.high = box.high.cwiseMin(t.workspace_upper + offset + slack);
   return box;
 }
 
@@ -161,6 +171,14 @@ std::string bodiesProblem(const Scene& scene, const std::vector<BodyTask>& bodie
       return who + ": the target weight must be finite and >= 0";
     }
     if (t.target_weight > 0.0 && t.target.size() == 0) return who + " has a weight but no target";
+    problem = turningBodyProblem(body);
+    if (!problem.empty()) return who + " " + problem;
+    if (!std::isfinite(t.target_yaw) || !(t.target_yaw_weight >= 0.0) ||
+        !std::isfinite(t.target_yaw_weight)) {
+      return who + ": the target yaw and its weight must be finite (weight >= 0)";
+    }
+    if (t.target_yaw_weight > 0.0 && !body.turns)
+      return who + " has a target yaw but does not turn";
   }
   return "";
 }
@@ -323,6 +341,15 @@ std::vector<double> collisionReach(const SceneTask& task) {
   std::vector<double> reach(bodies.size(), 0.0);
   const Eigen::VectorXd joint_speeds =
       Eigen::VectorXd::Constant(scene.numJoints(), controlNorm(task));
+  // A turning body's sphere at lever arm L: |pdot| <= |v| + (L / rho) |sdot|
+  // <= sqrt(1 + L^2 / rho^2) |(v, sdot)|, and a turn moves it by at most 2 L.
+  const auto pushed_reach = [&](const CollisionBody& collision) {
+    const SceneBody& body = scene.bodies()[collision.free_body];
+    if (!body.turns) return travel;
+    const double arm = collision.centre.offset.head<2>().norm();
+    const double ratio = arm / body.turning_radius;
+    return std::min(travel * std::sqrt(1.0 + ratio * ratio), travel + 2.0 * arm);
+  };
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (bodies[i].sphere >= 0) {
       reach[i] = sphereReachBound(scene.robot(), bodies[i].sphere, joint_speeds, task.horizon);
@@ -338,7 +365,9 @@ std::vector<double> collisionReach(const SceneTask& task) {
       if (first_moves == second_moves || separationBound(task, bodies, pair, reach) > 0.0) continue;
       const CollisionBody& still = bodies[first_moves ? pair.other : pair.body];
       if (still.sphere >= 0) continue;  // a robot sphere's reach is its chain's
-      for (int sphere : scene.freeBodyCollisionBodies(still.free_body)) reach[sphere] = travel;
+      for (int sphere : scene.freeBodyCollisionBodies(still.free_body)) {
+        reach[sphere] = pushed_reach(bodies[sphere]);
+      }
       grew = true;
     }
   }
@@ -349,11 +378,16 @@ std::string infeasibility(const SceneTask& task) {
   const std::vector<double> reach = collisionReach(task);
   for (size_t b = 0; b < task.bodies.size(); ++b) {
     const BodyTask& t = task.bodies[b];
-    if (t.target.size() == 0 || t.target_weight == 0.0) continue;
     const std::string who = "body '" + task.scene.bodies()[b].name + "'";
-    if (!t.insideWorkspace(t.target)) return who + " has its target outside its workspace bounds";
     // All of a body's collision bodies share its reach.
     const int first = task.scene.freeBodyCollisionBodies(static_cast<int>(b))[0];
+    const bool turned =
+        std::fabs(t.target_yaw - task.scene.bodies()[b].yaw) > targetTolerance(t.target_yaw_weight);
+    if (t.hasYawTarget() && turned && reach[first] == 0.0) {
+      return who + " cannot reach its target yaw: nothing that moves can push it";
+    }
+    if (t.target.size() == 0 || t.target_weight == 0.0) continue;
+    if (!t.insideWorkspace(t.target)) return who + " has its target outside its workspace bounds";
     const Box box = reachableBox(task, static_cast<int>(b), Eigen::Vector3d::Zero(), reach[first]);
     const double miss = boxDistance(box, Box{t.target, t.target});
     // Within its tolerance a target counts as met (a replan from where a push nearly ended).
@@ -427,6 +461,11 @@ OcpDefinition buildOcp(const SceneTask& task, const std::vector<ContactPair>& mo
     if (t.hasTarget()) {
       terminal_weights.segment(first, dim).setConstant(t.target_weight);
       targets.segment(first, dim) = t.target;
+    }
+    if (t.hasYawTarget()) {  // in s = rho yaw: w (yaw - target)^2 = (w / rho^2) (s - rho target)^2
+      const double rho = scene.turningRadius(b);
+      terminal_weights(first + dim) = t.target_yaw_weight / (rho * rho);
+      targets(first + dim) = rho * t.target_yaw;
     }
   }
   ocp.state_lower = ocp.state_lower.cwiseMax(-kInf);  // infinite bounds as Ipopt's infinity

@@ -65,8 +65,8 @@ double lpecValueAtACorner() {
 }
 
 /// Hard cases through Ipopt at every step (no active-set Newton), the showcase scene up the
-/// accuracy ladder with its verifications, a push executed with feedback, and the showcase by
-/// the active-set method with its LPECs, all with our LDL^T.
+/// accuracy ladder with its verifications, a push executed with feedback, the showcase by the
+/// active-set method with its LPECs, and a turning box pushed into a corner, all with our LDL^T.
 std::uint64_t probeDigest() {
   Digest digest;
   fesd::SimulationOptions options = hard_cases::fesdOptions(2, 2);
@@ -120,6 +120,16 @@ std::uint64_t probeDigest() {
   digest.add(certified.report.iterations);
   digest.add(certified.report.lpec_value);
   digest.add(lpecValueAtACorner());
+  // A box that turns, pushed into a corner (pair model of turning spheres, the bounding-disc
+  // guess), verified.
+  fesd::SceneSolveOptions turning = fesd_test::nodeGridOptions();
+  turning.verify = true;
+  const fesd::SceneOutcome box =
+      fesd::solveSceneTask(fesd_test::boxIntoACorner(), fesd::TaskLimits{}, turning);
+  EXPECT_EQ(box.status, fesd::SolveStatus::kSuccess) << box.message;
+  digest.add(box.trajectory);
+  digest.add(box.report.iterations);
+  digest.add(box.verification.error);
   return digest.value();
 }
 

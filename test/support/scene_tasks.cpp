@@ -48,6 +48,29 @@ fesd::SceneTask pushAlongAWall() {
   return task;
 }
 
+fesd::SceneTask boxIntoACorner() {
+  fesd::SceneBody box{"box", 0.25, Eigen::Vector2d::Zero()};
+  for (const auto& [x, y] : {std::pair{-0.25, -0.25}, {0.25, -0.25}, {-0.25, 0.25}, {0.25, 0.25}}) {
+    box.spheres.push_back(
+        {"box/sphere_" + std::to_string(box.spheres.size()), Eigen::Vector3d(x, y, 0.0), 0.25});
+  }
+  box.yaw = 0.3;
+  fesd::turnAboutPressureCentre(box);
+  fesd::SceneTask task;
+  task.scene.bodies() = {{"pusher", 0.2, Eigen::Vector2d(-1.5, 0.2), true}, box};
+  task.scene.walls() = {{"right", Eigen::Vector2d(-1.0, 0.0), -1.5},
+                        {"floor", Eigen::Vector2d(0.0, 1.0), -1.0}};
+  task.bodies.resize(2);
+  task.bodies[0].max_speed = 2.0;
+  task.bodies[1].target = Eigen::Vector2d(1.0, -0.5);
+  task.bodies[1].target_weight = 100.0;
+  task.bodies[1].target_yaw = 0.0;
+  task.bodies[1].target_yaw_weight = 100.0;
+  task.horizon = 4.0;
+  task.num_intervals = 20;
+  return task;
+}
+
 fesd::SceneSolveOptions nodeGridOptions() {
   fesd::SceneSolveOptions options;
   options.ocp.discretization.num_elements = 3;

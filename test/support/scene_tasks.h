@@ -26,6 +26,12 @@ fesd::SceneTask pushAlongX();
 /// along the wall and ends 0.05 from its target (3, 0) at best.
 fesd::SceneTask pushAlongAWall();
 
+/// A pusher (R = 0.2, |u| <= 2) at (-1.5, 0.2) and a turning square box of four spheres
+/// (R = 0.25 at (+-0.25, +-0.25)) at the origin, yaw 0.3, to be pushed into the corner of the
+/// walls x <= 1.5 and y >= -1 and squared to them: to (1, -0.5), yaw 0 (weights 100) in
+/// T = 4 on 20 intervals.
+fesd::SceneTask boxIntoACorner();
+
 /// The node's default grid (3 elements, 2 stages) and verification grid (n_s = 3, N_FE = 6).
 fesd::SceneSolveOptions nodeGridOptions();
 

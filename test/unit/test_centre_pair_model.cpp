@@ -82,6 +82,57 @@ INSTANTIATE_TEST_SUITE_P(Robots, CentrePairDerivatives,
                          ::testing::Values(std::make_pair("planar_arm.urdf", 2),
                                            std::make_pair("panda_spherized.urdf", 3)));
 
+/// An actuated disc and two turning bodies (position and s = rho yaw each) with a pair of every
+/// kind on a turning body's sphere: against the disc, the other body's sphere, a point, a wall.
+fesd::CentrePairSystem turningSystem(int dimension) {
+  fesd::CentrePairSystem system;
+  system.dimension = dimension;
+  const int body0 = dimension, body1 = 2 * dimension + 1;
+  system.state_size = 3 * dimension + 2;
+  system.control_size = dimension;
+  for (int d = 0; d < dimension; ++d) system.actuation.emplace_back(d, d);
+  const CollisionCentre disc{CollisionCentre::Source::kFreeBody, 0};
+  const auto sphere = [&](int index, double x, double y, double rho) {
+    return CollisionCentre{CollisionCentre::Source::kTurningBody, index, Eigen::Vector3d(x, y, 0.0),
+                           rho};
+  };
+  const Eigen::Vector3d normal =
+      Eigen::Vector3d(0.3, -0.5, dimension == 3 ? 0.8 : 0.0).normalized();
+  system.pairs = {
+      {CentrePair::Kind::kCentre, disc, sphere(body0, 0.4, 0.1, 0.5), Eigen::Vector3d::Zero(), 0.1},
+      {CentrePair::Kind::kCentre, sphere(body0, -0.4, 0.1, 0.5), sphere(body1, 0.2, -0.3, 0.8),
+       Eigen::Vector3d::Zero(), 0.2},
+      {CentrePair::Kind::kPoint,
+       sphere(body1, 0.2, -0.3, 0.8),
+       {},
+       Eigen::Vector3d(0.2, 0.1, 0.3),
+       0.03},
+      {CentrePair::Kind::kWall, sphere(body0, 0.4, 0.1, 0.5), {}, normal, 0.1},
+  };
+  system.constraint_scales = Eigen::VectorXd::Ones(system.pairs.size());
+  return system;
+}
+
+TEST(CentrePairModel, TurningBodiesPairsAgainstFiniteDifferences) {
+  std::mt19937 random(43);
+  for (int dimension : {2, 3}) {
+    SCOPED_TRACE(dimension);
+    const fesd::CentrePairSystem system = turningSystem(dimension);
+    const auto model = fesd::centrePairModel(system, "turning");
+    for (int trial = 0; trial < 3; ++trial) {
+      const Eigen::VectorXd z = fesd_test::randomVector(model->velocity()->inputSize(), random);
+      const auto velocity = fesd_test::checkAgainstFiniteDifferences(
+          *model->velocity(), z, fesd_test::randomVector(system.state_size, random));
+      EXPECT_LT(velocity.jacobian, fesd_test::kTolerance);
+      EXPECT_LT(velocity.hessian, fesd_test::kTolerance);
+      const auto constraints = fesd_test::checkAgainstFiniteDifferences(
+          *model->constraints(), z.head(system.state_size), fesd_test::randomVector(4, random));
+      EXPECT_LT(constraints.jacobian, fesd_test::kTolerance);
+      EXPECT_LT(constraints.hessian, fesd_test::kTolerance);
+    }
+  }
+}
+
 TEST(CentrePairModel, ValuesAreTheGeometricOnes) {
   const fesd::CentrePairSystem system = mixedSystem("planar_arm.urdf", 2);
   const auto model = fesd::centrePairModel(system, "test");

@@ -1,11 +1,13 @@
-// Collision centres (scene/collision_centres.cpp): a robot sphere's centre and its first, second
-// and third derivatives in its chain's coordinates against central differences, a free body's
-// centre as the state itself, and the plane's projection.
+// Collision centres (scene/collision_centres.cpp): a robot sphere's and a turning body's sphere's
+// centre and their first, second and third derivatives in their variables against central
+// differences, a free body's centre as the state itself, and the plane's projection.
 #include <memory>
 #include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
 
 #include "fesd_trajopt/scene/collision_centres.h"
 #include "support/finite_differences.h"
@@ -45,56 +47,85 @@ Eigen::VectorXd randomState(int nq, std::mt19937& random) {
   return fesd_test::randomVector(nq + 3, random);
 }
 
+/// A centre's position, Jacobian, weighted Hessian and its derivative along v at x against
+/// central differences in the centre's local variables (everything else held at x).
+void expectDerivativesMatchDifferences(const std::shared_ptr<const fesd::KinematicModel>& robot,
+                                       int dimension, const CollisionCentre& centre,
+                                       const Eigen::VectorXd& x, std::mt19937& random) {
+  CentreEvaluator evaluator(robot, dimension);
+  const std::vector<int> variables = evaluator.variables(centre);
+  const Eigen::Vector3d w = fesd_test::randomVector(3, random);
+  const Eigen::VectorXd v = fesd_test::randomVector(static_cast<int>(variables.size()), random);
+  const auto at = [&](const Eigen::VectorXd& local) {
+    Eigen::VectorXd moved = x;
+    for (size_t i = 0; i < variables.size(); ++i) moved(variables[i]) = local(i);
+    return moved;
+  };
+  Eigen::VectorXd local(variables.size());
+  for (size_t i = 0; i < variables.size(); ++i) local(i) = x(variables[i]);
+  const auto position = [&](const Eigen::VectorXd& l) -> Eigen::VectorXd {
+    const Eigen::VectorXd moved = at(l);
+    CentreEvaluator e(robot, dimension);
+    e.setState(moved.data());
+    return e.position(centre);
+  };
+  const auto weighted_gradient = [&](const Eigen::VectorXd& l) -> Eigen::VectorXd {
+    const Eigen::VectorXd moved = at(l);
+    CentreEvaluator e(robot, dimension);
+    e.setState(moved.data());
+    return jacobianOf(e, centre).transpose() * w;
+  };
+  const auto hessian_along_v = [&](const Eigen::VectorXd& l) -> Eigen::VectorXd {
+    const Eigen::VectorXd moved = at(l);
+    CentreEvaluator e(robot, dimension);
+    e.setState(moved.data());
+    return weightedHessianOf(e, centre, w) * v;
+  };
+  evaluator.setState(x.data());
+  const Eigen::MatrixXd jacobian = jacobianOf(evaluator, centre);
+  EXPECT_LT((jacobian - fesd_test::finiteDifferenceJacobian(position, local)).norm(), 1e-7);
+  const Eigen::MatrixXd hessian = weightedHessianOf(evaluator, centre, w);
+  EXPECT_LT((hessian - fesd_test::finiteDifferenceJacobian(weighted_gradient, local)).norm(), 1e-7);
+  // d/dx (H[w] v) = T[w, v] (symmetric in its indices): column k of the difference quotient of
+  // H[w] v is T[w, e_k] v, which equals T[w, v] e_k.
+  const Eigen::MatrixXd third = thirdDerivativeOf(evaluator, centre, w, v);
+  EXPECT_LT((third - fesd_test::finiteDifferenceJacobian(hessian_along_v, local)).norm(), 1e-7);
+  EXPECT_GT(third.norm(), 1e-3);  // something to compare
+}
+
 TEST(CollisionCentres, RobotSphereDerivativesAgainstFiniteDifferences) {
   const auto robot = panda();
   const int nq = robot->numCoordinates();
   std::mt19937 random(5);
-  CentreEvaluator evaluator(robot, 3);
   // Spheres on the third link and below, off their joints' axes: every derivative is nonzero.
   for (int sphere : {20, 40, static_cast<int>(robot->spheres.size()) - 1}) {
+    SCOPED_TRACE(robot->spheres[sphere].name);
     const CollisionCentre centre{CollisionCentre::Source::kRobotSphere, sphere};
-    const std::vector<int> variables = evaluator.variables(centre);
-    ASSERT_GE(variables.size(), 3u) << robot->spheres[sphere].name;
-    Eigen::VectorXd x = randomState(nq, random);
-    const Eigen::Vector3d w = fesd_test::randomVector(3, random);
-    const Eigen::VectorXd v = fesd_test::randomVector(static_cast<int>(variables.size()), random);
-    // Functions of the centre's local variables, everything else held at x.
-    const auto at = [&](const Eigen::VectorXd& local) {
-      Eigen::VectorXd moved = x;
-      for (size_t i = 0; i < variables.size(); ++i) moved(variables[i]) = local(i);
-      return moved;
-    };
-    Eigen::VectorXd local(variables.size());
-    for (size_t i = 0; i < variables.size(); ++i) local(i) = x(variables[i]);
-    const auto position = [&](const Eigen::VectorXd& l) -> Eigen::VectorXd {
-      const Eigen::VectorXd moved = at(l);
-      CentreEvaluator e(robot, 3);
-      e.setState(moved.data());
-      return e.position(centre);
-    };
-    const auto weighted_gradient = [&](const Eigen::VectorXd& l) -> Eigen::VectorXd {
-      const Eigen::VectorXd moved = at(l);
-      CentreEvaluator e(robot, 3);
-      e.setState(moved.data());
-      return jacobianOf(e, centre).transpose() * w;
-    };
-    const auto hessian_along_v = [&](const Eigen::VectorXd& l) -> Eigen::VectorXd {
-      const Eigen::VectorXd moved = at(l);
-      CentreEvaluator e(robot, 3);
-      e.setState(moved.data());
-      return weightedHessianOf(e, centre, w) * v;
-    };
+    ASSERT_GE(robot->chainOf(sphere).size(), 3u);
+    expectDerivativesMatchDifferences(robot, 3, centre, randomState(nq, random), random);
+  }
+}
+
+/// A turning body's sphere: p = position + R(s / rho) offset, about z, in the plane and in space.
+TEST(CollisionCentres, TurningBodySphereTurnsWithItsYawAndItsDerivativesMatchDifferences) {
+  std::mt19937 random(9);
+  const Eigen::Vector3d offset(0.3, -0.4, 0.2);
+  const double rho = 0.7;
+  for (int dimension : {2, 3}) {
+    SCOPED_TRACE(dimension);
+    const CollisionCentre centre{CollisionCentre::Source::kTurningBody, 1, offset, rho};
+    const Eigen::VectorXd x = fesd_test::randomVector(dimension + 2, random);  // x(0): another
+    CentreEvaluator evaluator(nullptr, dimension);
+    std::vector<int> expected_variables;
+    for (int d = 0; d <= dimension; ++d) expected_variables.push_back(1 + d);
+    EXPECT_EQ(evaluator.variables(centre), expected_variables);
     evaluator.setState(x.data());
-    const Eigen::MatrixXd jacobian = jacobianOf(evaluator, centre);
-    EXPECT_LT((jacobian - fesd_test::finiteDifferenceJacobian(position, local)).norm(), 1e-7);
-    const Eigen::MatrixXd hessian = weightedHessianOf(evaluator, centre, w);
-    EXPECT_LT((hessian - fesd_test::finiteDifferenceJacobian(weighted_gradient, local)).norm(),
-              1e-7);
-    // d/dx (H[w] v) = T[w, v] (symmetric in its indices): column k of the difference quotient of
-    // H[w] v is T[w, e_k] v, which equals T[w, v] e_k.
-    const Eigen::MatrixXd third = thirdDerivativeOf(evaluator, centre, w, v);
-    EXPECT_LT((third - fesd_test::finiteDifferenceJacobian(hessian_along_v, local)).norm(), 1e-7);
-    EXPECT_GT(third.norm(), 1e-3) << robot->spheres[sphere].name;  // something to compare
+    const double yaw = x(1 + dimension) / rho;
+    Eigen::Vector3d expected = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * offset;
+    expected.head(dimension) += x.segment(1, dimension);
+    if (dimension == 2) expected.z() = 0.0;
+    EXPECT_LT((evaluator.position(centre) - expected).norm(), 1e-15);
+    expectDerivativesMatchDifferences(nullptr, dimension, centre, x, random);
   }
 }
 

@@ -52,6 +52,31 @@ TEST(MovingPart, APassiveBodyOutOfReachIsLeftOutAndKeepsItsPlace) {
             task.scene.pairName(decisions[0].pair));
 }
 
+// A turning box out of reach (boxIntoACorner's, moved far away) is left out with its three
+// coordinates; a turning box in reach keeps them in the part: states map both ways unchanged.
+TEST(MovingPart, TurningBodiesKeepTheirTurnInOrOutOfThePart) {
+  fesd::SceneTask task = fesd_test::boxIntoACorner();
+  task.scene.bodies().push_back(task.scene.bodies()[1]);
+  task.scene.bodies().back().name = "far_box";
+  for (fesd::FreeBodySphere& sphere : task.scene.bodies().back().spheres) {
+    sphere.name = "far_box" + sphere.name.substr(3);
+  }
+  task.scene.bodies().back().position = Eigen::Vector2d(100.0, 100.0);
+  task.bodies.push_back(fesd::BodyTask{});
+  const fesd::MovingPart part = fesd::movingPart(task, fesd::decidePairs(task));
+  EXPECT_EQ(part.bodies, (std::vector<int>{0, 1}));
+  EXPECT_EQ(part.task.scene.stateSize(), 5);
+  Eigen::VectorXd x = task.scene.initialState();
+  ASSERT_EQ(x.size(), 8);
+  x.head(5) << 0.1, 0.2, 0.3, 0.4, 0.5;
+  const Eigen::VectorXd moving = fesd::partState(task, part, x);
+  EXPECT_EQ(moving, x.head(5));
+  fesd::Trajectory trajectory;
+  trajectory.states = {moving};
+  const fesd::Trajectory full = fesd::fullSceneTrajectory(task, part, trajectory);
+  EXPECT_EQ(full.states[0], x);  // the far box at its start, its yaw too
+}
+
 TEST(MovingPart, GuessesAndTrajectoriesMapOntoAPartWithOtherPairs) {
   const fesd::SceneTask task = pushingTask();  // pusher, puck, rock (far); post
   const fesd::ContactPair pusher_puck{0, fesd::ContactPair::Kind::kBody, 1},

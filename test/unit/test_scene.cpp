@@ -277,4 +277,47 @@ TEST(Scene, SrdfDisabledPairsLeaveSelfCollisionOfThePanda) {
   }
 }
 
+// A turning body: (position, s = rho yaw) in the state after a translating one, its spheres
+// turned by its yaw; turnAboutPressureCentre moves it to its spheres' centre of pressure.
+TEST(SceneWithATurningBody, StateLayoutYawAndCentreOfPressure) {
+  fesd::SceneBody bar{"bar", 0.1, Eigen::Vector2d(1.0, 2.0)};
+  bar.spheres = {{"bar/sphere_0", Eigen::Vector3d(0.0, 0.0, 0.0), 0.1},
+                 {"bar/sphere_1", Eigen::Vector3d(0.0, 0.6, 0.0), 0.2}};  // areas 1 : 4
+  bar.yaw = M_PI / 2;
+  EXPECT_EQ(fesd::boundingRadius(bar), 0.8);
+  EXPECT_EQ(fesd::turningBodyProblem(bar), "");  // nothing to check while it does not turn
+  bar.turns = true;
+  EXPECT_NE(fesd::turningBodyProblem(bar).find("turning radius"), std::string::npos);
+  fesd::turnAboutPressureCentre(bar);
+  EXPECT_EQ(fesd::turningBodyProblem(bar), "");
+  // The centre of pressure at 0.48 along the bar, turned by 90 degrees: 0.48 to the left.
+  EXPECT_LT((bar.position - Eigen::Vector2d(1.0 - 0.48, 2.0)).norm(), 1e-12);
+  EXPECT_LT((bar.spheres[1].offset - Eigen::Vector3d(0.0, 0.12, 0.0)).norm(), 1e-12);
+  EXPECT_GT(bar.turning_radius, 0.0);
+
+  Scene scene(2);
+  scene.bodies() = {{"pusher", 0.2, Eigen::Vector2d(-1.0, 0.0), true}, bar};
+  EXPECT_EQ(scene.coordinates(0), 2);
+  EXPECT_EQ(scene.coordinates(1), 3);
+  EXPECT_EQ(scene.stateIndex(1), 2);
+  EXPECT_EQ(scene.stateSize(), 5);
+  const Eigen::VectorXd x0 = scene.initialState();
+  EXPECT_NEAR(x0(4), bar.turning_radius * M_PI / 2, 1e-15);
+  EXPECT_NEAR(scene.yaw(1, x0), M_PI / 2, 1e-15);
+  EXPECT_EQ(scene.yaw(0, x0), 0.0);
+  // The far sphere at the position plus R(90 deg) (0, 0.12): (-0.12, 0).
+  const fesd::CollisionCentre& far = scene.collisionBodies()[2].centre;
+  fesd::CentreEvaluator evaluator(nullptr, 2);
+  evaluator.setState(x0.data());
+  EXPECT_LT((evaluator.position(far) - Eigen::Vector3d(0.52 - 0.12, 2.0, 0.0)).norm(), 1e-12);
+  // setInitialState reads the yaw back.
+  Eigen::VectorXd moved = x0;
+  moved(4) = bar.turning_radius * 0.25;
+  scene.setInitialState(moved);
+  EXPECT_NEAR(scene.bodies()[1].yaw, 0.25, 1e-15);
+  // Only passive bodies turn.
+  scene.bodies()[1].actuated = true;
+  EXPECT_THROW(scene.model(scene.allPairs()), std::invalid_argument);
+}
+
 }  // namespace

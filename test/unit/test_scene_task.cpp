@@ -113,6 +113,47 @@ TEST(SceneTask, PassiveBodiesMoveOnlyWhenSomethingThatMovesCanReachThem) {
   }
 }
 
+// A turning box (boxIntoACorner): its spheres reach min(D sqrt(1 + L^2 / rho^2), D + 2 L), its
+// yaw target weighs (w / rho^2) (s - rho target)^2 in s = rho yaw, and what it must not be is
+// named.
+TEST(SceneTask, ATurningBodysReachCostAndValidation) {
+  fesd::SceneTask task = fesd_test::boxIntoACorner();
+  ASSERT_EQ(fesd::validateTask(task, fesd::TaskLimits{}), "");
+  const double rho = task.scene.turningRadius(1);
+  const double travel = task.horizon * std::sqrt(2.0) * 2.0;  // |u_max|: two coordinates at 2
+  const double arm = 0.25 * std::sqrt(2.0);
+  const std::vector<double> reach = fesd::collisionReach(task);
+  ASSERT_EQ(reach.size(), 5u);
+  for (int sphere = 1; sphere <= 4; ++sphere) {
+    EXPECT_NEAR(reach[sphere],
+                std::min(travel * std::sqrt(1.0 + arm * arm / (rho * rho)), travel + 2.0 * arm),
+                1e-12);
+  }
+  const fesd::OcpDefinition ocp = fesd::buildOcp(task, {});
+  ASSERT_EQ(ocp.initial_state.size(), 5);
+  EXPECT_NEAR(ocp.initial_state(4), rho * 0.3, 1e-15);
+  // The Mayer cost at the start: 100 |p - (1, -0.5)|^2 + 100 (0.3 - 0)^2.
+  double cost = 0.0;
+  ocp.mayer_cost->evaluate(ocp.initial_state.data(), &cost);
+  EXPECT_NEAR(cost, 100.0 * (1.0 + 0.25) + 100.0 * 0.09, 1e-9);
+
+  fesd::SceneTask actuated = task;
+  actuated.scene.bodies()[1].actuated = true;
+  EXPECT_NE(fesd::validateTask(actuated, fesd::TaskLimits{}).find("only passive bodies turn"),
+            std::string::npos);
+  fesd::SceneTask off_centre = task;
+  off_centre.scene.bodies()[1].spheres[0].offset.x() += 0.1;
+  EXPECT_NE(fesd::validateTask(off_centre, fesd::TaskLimits{}).find("centre of pressure"),
+            std::string::npos);
+  fesd::SceneTask yaw_only = task;
+  yaw_only.scene.bodies()[1].turns = false;
+  EXPECT_NE(fesd::validateTask(yaw_only, fesd::TaskLimits{}).find("does not turn"),
+            std::string::npos);
+  fesd::SceneTask nan_yaw = task;
+  nan_yaw.bodies[1].target_yaw = std::nan("");
+  EXPECT_NE(fesd::validateTask(nan_yaw, fesd::TaskLimits{}).find("target yaw"), std::string::npos);
+}
+
 std::string infeasibility(void (*change)(fesd::SceneTask&)) {
   fesd::SceneTask task = slowPushingTask();
   change(task);

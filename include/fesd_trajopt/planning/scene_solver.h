@@ -76,6 +76,8 @@ struct SceneOutcome {
   int pair_rounds = 0;
   /// Per body: its end position's distance from its target (NaN without a target).
   std::vector<double> target_distances;
+  /// Per body: |yaw(T) - target_yaw| of a turning body with a yaw target (NaN without one).
+  std::vector<double> target_yaw_distances;
   /// Per joint: |q_j(T) - target| (NaN without a target).
   std::vector<double> joint_target_distances;
   /// The first guess's residual in the NLP's equations (NlpAssembly::equalityResidual at its

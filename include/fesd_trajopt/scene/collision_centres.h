@@ -13,14 +13,17 @@
 namespace fesd {
 
 /// A collision body's centre as a function of the state x: a free body's position plus a fixed
-/// offset (linear in x) or a robot sphere's centre (forward kinematics of the joint coordinates q =
-/// x.head(nq)).
+/// offset (linear in x), a turning body's position plus its offset turned by the body's yaw, or a
+/// robot sphere's centre (forward kinematics of the joint coordinates q = x.head(nq)).
 struct CollisionCentre {
-  enum class Source { kFreeBody, kRobotSphere };
+  enum class Source { kFreeBody, kRobotSphere, kTurningBody };
   Source source;
-  int index;  ///< free body: the state index of its first coordinate; robot sphere: the sphere
-  /// A free body's sphere: its centre's offset from the body's position (it translates with it).
+  int index;  ///< a free body: the state index of its first coordinate; robot sphere: the sphere
+  /// A free body's sphere: its centre's offset from the body's position, in the body's frame.
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  /// A turning body's: the length rho that scales its turn coordinate, s = rho * yaw, the state
+  /// coordinate after its position (Scene: the metric of its limit surface made the identity).
+  double turning_radius = 0.0;
 };
 
 /// Evaluates collision centres and their derivatives in the few state coordinates each depends on
@@ -50,7 +53,7 @@ class CentreEvaluator {
   /// has their size already: the NLP's evaluations call them per pair and stage point.
   /// dp/dx: 3 x variables(centre).size().
   void jacobian(const CollisionCentre& centre, Eigen::Matrix3Xd& into) const;
-  /// The Hessian of w . p(x) in the centre's variables (0 for a free body).
+  /// The Hessian of w . p(x) in the centre's variables (0 for a translating free body).
   void weightedHessian(const CollisionCentre& centre, const Eigen::Vector3d& w,
                        Eigen::MatrixXd& into) const;
   /// The derivative of weightedHessian along v (in the centre's variables, fixed w).

@@ -10,26 +10,36 @@
 #include "fesd_trajopt/kinematics/kinematic_model.h"
 #include "fesd_trajopt/model/dcs_model.h"
 #include "fesd_trajopt/scene/centre_pair_model.h"
+#include "fesd_trajopt/scene/limit_surface.h"
 
 namespace fesd {
 
-/// One of several spheres a free body carries (a free link of a URDF): it translates with the
-/// body's position and never rotates.
+/// One of several spheres a free body carries (a free link of a URDF): it moves with the body's
+/// position (and its yaw, when the body turns).
 struct FreeBodySphere {
   std::string name;        ///< "<link>/sphere_<k>"
-  Eigen::Vector3d offset;  ///< from the body's position
+  Eigen::Vector3d offset;  ///< from the body's position, in its frame
   double radius;
 };
 
-/// A free disc (2-D) or sphere (3-D): a link on a translation joint from the world. Actuated
-/// bodies are velocity-controlled (pdot = u); passive ones only move when pushed.
+/// A free disc (2-D) or sphere (3-D): a link on a translation joint from the world, or on a
+/// planar joint when it turns. Actuated bodies are velocity-controlled (pdot = u); passive ones
+/// only move when pushed.
 struct SceneBody {
   std::string name;
   double radius = 1.0;
-  Eigen::VectorXd position;  ///< initial position
+  Eigen::VectorXd position;  ///< initial position; a turning body's centre of pressure
   bool actuated = false;
   /// The spheres it carries when several; empty: it is one sphere of `radius` at `position`.
   std::vector<FreeBodySphere> spheres = {};
+  /// Turns about z as it is pushed, quasi-statically with an ellipsoidal limit surface
+  /// (limit_surface.h; docs/design.md): its state holds s = rho yaw after its position, so that
+  /// the projection in the metric diag(1, 1, rho^2) is the plain one. Passive bodies only.
+  bool turns = false;
+  double yaw = 0.0;  ///< initial yaw (a turning body's)
+  /// rho (> 0 when it turns): by default its footprint's limitSurfaceRadius (the request layer
+  /// sets that).
+  double turning_radius = 0.0;
 };
 
 /// A fixed disc or sphere.
@@ -69,6 +79,19 @@ struct ContactPair {
   }
 };
 
+/// The radius of the disc (sphere) about a body's position that holds its spheres (its radius
+/// when it is one sphere).
+double boundingRadius(const SceneBody& body);
+/// A turning body's footprint in its frame (limit_surface.h): its spheres', or its own disc.
+Footprint footprintOf(const SceneBody& body);
+/// Makes a body of spheres turn about their centre of pressure: moves its position there (its
+/// offsets turned by its yaw) and its offsets with it, and sets its turning radius to the
+/// footprint's limitSurfaceRadius unless `turning_radius` > 0 is given.
+void turnAboutPressureCentre(SceneBody& body, double turning_radius = 0.0);
+/// What makes a body unfit to turn ("" if nothing, or if it does not turn): actuated, a
+/// non-finite yaw, no turning radius, spheres whose centre of pressure is not its position.
+std::string turningBodyProblem(const SceneBody& body);
+
 /// Whether `name` names the collision body `side`: as that body, obstacle or wall, or as the
 /// link (or free body) whose sphere `<name>/sphere_<k>` it is.
 bool namesSide(const std::string& name, const std::string& side);
@@ -107,14 +130,20 @@ class Scene {
   /// Link pairs that never collide (an SRDF's disable_collisions), either order.
   std::vector<std::pair<std::string, std::string>> disabled_link_pairs;
 
-  int stateSize() const { return numJoints() + dimension_ * static_cast<int>(bodies_.size()); }
+  int stateSize() const;
   int controlSize() const;
+  /// A free body's state coordinates: its position's, and s = rho yaw when it turns.
+  int coordinates(int body) const { return dimension_ + (bodies_.at(body).turns ? 1 : 0); }
   /// First state index of a free body's position.
-  int stateIndex(int body) const { return numJoints() + dimension_ * body; }
+  int stateIndex(int body) const;
   /// A free body's position at a state of the scene.
   Eigen::VectorXd position(int body, const Eigen::VectorXd& x) const {
     return x.segment(stateIndex(body), dimension_);
   }
+  /// A body's rho (SceneBody::turning_radius); 0 if it does not turn.
+  double turningRadius(int body) const;
+  /// A free body's yaw at a state of the scene (0 for one that does not turn).
+  double yaw(int body, const Eigen::VectorXd& x) const;
   /// First control index of a free body's velocity, or -1 for a passive body.
   int controlIndex(int body) const;
   Eigen::VectorXd initialState() const;

@@ -18,9 +18,14 @@ struct BodyTask {
   Eigen::VectorXd target;      ///< empty: no target
   double target_weight = 0.0;  ///< weight of |p(T) - target|^2 in the cost
   Eigen::VectorXd workspace_lower, workspace_upper;  ///< per coordinate; empty: none
+  /// A turning body's: weight of (yaw(T) - target_yaw)^2 in the cost (yaw continuous from its
+  /// start: the target is met as given, not modulo 2 pi).
+  double target_yaw = 0.0;
+  double target_yaw_weight = 0.0;
 
   /// A target the cost weighs.
   bool hasTarget() const { return target.size() && target_weight > 0.0; }
+  bool hasYawTarget() const { return target_yaw_weight > 0.0; }
   /// p within the workspace bounds (every coordinate; no bounds: everywhere).
   bool insideWorkspace(const Eigen::VectorXd& p) const {
     return !(workspace_lower.size() && (p.array() < workspace_lower.array()).any()) &&
@@ -44,7 +49,7 @@ struct JointTask {
 
 /// A trajectory-optimisation task on a scene: drive the bodies and joints to their targets with
 /// the actuated ones, min  control_weight int |u|^2 dt + sum_b w_b |p_b(T) - target_b|^2
-/// + sum_j w_j (q_j(T) - target_j)^2.
+/// + sum_b w_yaw,b (yaw_b(T) - target_yaw_b)^2 + sum_j w_j (q_j(T) - target_j)^2.
 struct SceneTask {
   Scene scene{2};
   std::vector<BodyTask> bodies;   ///< one per free body
@@ -97,8 +102,8 @@ std::string validateTask(const SceneTask& task, const TaskLimits& limits);
 
 /// Checks a valid task (validateTask) for goals it cannot meet: a target outside the body's
 /// workspace bounds, or beyond the reach of everything that could move it within the horizon
-/// (the conservative reach of decidePairs; a passive body nothing can push has none). Returns ""
-/// or a message naming the body and the target.
+/// (the conservative reach of decidePairs; a passive body nothing can push has none), or a target
+/// yaw of a body nothing can push. Returns "" or a message naming the body and the target.
 std::string infeasibility(const SceneTask& task);
 
 /// Whether a contact pair is modelled, and why (or why not).
