@@ -576,7 +576,27 @@ class NodeServices(unittest.TestCase):
         self.assert_invalid(bar(role=BodySpec.ROLE_ACTUATED), "only passive bodies turn")
         self.assert_invalid(bar(turns=False, initial_yaw=0.5), "does not turn")
         self.assert_invalid(bar(add=False, name="object"), "spheres come from")
+        self.assert_invalid(bar(sphere_offsets=[Point(0, 0, 0)], sphere_radii=[0.25]), "one sphere")
+        self.assert_invalid(bar(sphere_offsets=[Point(0, -0.3, 0.1), Point(0, 0.3, 0)]),
+                            "off the plane")
+        self.assert_invalid(bar(turning_radius=1e-9), "turning radius")
         self.assertEqual(self.solve(small_default()).status, SUCCESS)
+
+    def test_a_turning_bodys_position_is_its_spheres_centre_of_pressure(self):
+        # Spheres at y = 0 and 0.6 (radii 0.1, 0.2: areas 1 : 4) given about any origin: the body
+        # stays at initial_position and its offsets move by their centre of pressure, y = 0.48.
+        request = self.turning_bar_request()
+        request.bodies[1] = body("bar", add=True, turns=True, initial_position=Point(0, 3, 0),
+                                 initial_yaw=0.2, sphere_offsets=[Point(0, 0, 0), Point(0, 0.6, 0)],
+                                 sphere_radii=[0.1, 0.2])
+        response = self.simulate(request)
+        self.assertEqual(response.status, SUCCESS, response.message)
+        bar = [b for b in response.solution.bodies if b.name == "bar"][0]
+        self.assertAlmostEqual(bar.positions[0].x, 0.0, delta=1e-12)
+        self.assertAlmostEqual(bar.positions[0].y, 3.0, delta=1e-12)
+        self.assertAlmostEqual(bar.yaws[0], 0.2, delta=1e-12)
+        self.assertAlmostEqual(bar.sphere_offsets[0].y, -0.48, delta=1e-12)
+        self.assertAlmostEqual(bar.sphere_offsets[1].y, 0.12, delta=1e-12)
 
     def block(self, array, *index):
         """One entry of a row-major Float64MultiArray."""

@@ -36,8 +36,13 @@ PushPlan proxyPlan(const SceneTask& task, int sphere, int body, const Eigen::Vec
   proxy.scene = Scene(dim);
   const KinematicSphere& s = scene.robot().spheres[sphere];
   proxy.scene.bodies().push_back({s.name, s.radius, start.head(dim), true});
-  proxy.scene.bodies().push_back(scene.bodies()[body]);
-  proxy.scene.bodies().back().actuated = false;
+  // The body as its bounding disc (the planner plans discs): the proxy's pairs begin with the
+  // one between the sphere's disc and it.
+  SceneBody pushed = scene.bodies()[body];
+  pushed.radius = boundingRadius(pushed);
+  pushed.spheres.clear();
+  pushed.actuated = false;
+  proxy.scene.bodies().push_back(pushed);
   proxy.scene.obstacles() = scene.obstacles();
   proxy.scene.walls() = scene.walls();
   proxy.bodies.resize(2);

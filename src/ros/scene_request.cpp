@@ -66,15 +66,17 @@ std::string requestedSpheres(const fesd_trajopt::BodySpec& spec, const fesd::Tas
     const geometry_msgs::Point& o = spec.sphere_offsets[k];
     const Eigen::Vector3d offset(o.x, o.y, o.z);
     const double radius = spec.sphere_radii[k];
-    if (!offset.allFinite() || !(radius > 0.0) || !std::isfinite(radius) ||
+    if (!offset.allFinite() || !(radius > 0.0) || radius > limits.max_coordinate ||
         offset.norm() > limits.max_coordinate) {
       return " has sphere " + std::to_string(k) +
-             " with a non-finite or too large offset or a radius that is not > 0";
+             " with a non-finite or too large offset or radius, or a radius that is not > 0";
+    }
+    if (body.position.size() == 2 && offset.z() != 0.0) {
+      return " has sphere " + std::to_string(k) + " off the plane (z offset in a planar scene)";
     }
     body.spheres.push_back({spec.name + "/sphere_" + std::to_string(k), offset, radius});
   }
-  if (body.spheres.size() == 1) {  // one sphere: the body itself, at its centre
-    body.position += body.spheres[0].offset.head(body.position.size());
+  if (body.spheres.size() == 1) {  // one sphere: the body itself, at its position
     body.radius = body.spheres[0].radius;
     body.spheres.clear();
   }
@@ -102,7 +104,11 @@ std::string applyTurning(const fesd_trajopt::BodySpec& spec, const fesd::TaskLim
   }
   if (body.actuated) return " turns and is actuated: only passive bodies turn";
   body.yaw = spec.initial_yaw;
+  // The request's position is the spheres' centre of pressure (BodySpec.msg): their offsets
+  // move, the body does not; a URDF link's spheres are where the URDF puts them: it moves.
+  const Eigen::VectorXd position = body.position;
   fesd::turnAboutPressureCentre(body, spec.turning_radius);
+  if (spec.add) body.position = position;
   body.radius = fesd::boundingRadius(body);
   task.target_yaw = spec.target_yaw;
   task.target_yaw_weight = spec.target_yaw_weight;

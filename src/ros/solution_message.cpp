@@ -348,9 +348,9 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
     body_at("bodies_final", body, body.positions.back(), yawAt(body, body.positions.size() - 1),
             body_color(b, 0.6));
     const fesd::BodyTask& t = task.bodies[b];
-    if (t.hasTarget()) {
-      body_at("targets", body, point(t.target), t.hasYawTarget() ? t.target_yaw : yawAt(body, 0),
-              color(0.2, 0.8, 0.3, 0.3));
+    if (t.hasTarget() || t.hasYawTarget()) {  // a yaw alone: drawn where the body ends
+      body_at("targets", body, t.hasTarget() ? point(t.target) : body.positions.back(),
+              t.hasYawTarget() ? t.target_yaw : yawAt(body, 0), color(0.2, 0.8, 0.3, 0.3));
     }
     visualization_msgs::Marker path = marker("paths", visualization_msgs::Marker::LINE_STRIP);
     path.points = body.positions;

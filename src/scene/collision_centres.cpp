@@ -100,7 +100,7 @@ Eigen::Vector3d CentreEvaluator::position(const CollisionCentre& centre) const {
 
 void CentreEvaluator::jacobian(const CollisionCentre& centre, Eigen::Matrix3Xd& into) const {
   if (centre.source != CollisionCentre::Source::kRobotSphere) {
-    const int n = static_cast<int>(variables(centre).size());
+    const int n = dimension_ + (centre.source == CollisionCentre::Source::kTurningBody ? 1 : 0);
     into.setZero(3, n);
     for (int d = 0; d < dimension_; ++d) into(d, d) = 1.0;
     if (n > dimension_) {
@@ -116,7 +116,7 @@ void CentreEvaluator::jacobian(const CollisionCentre& centre, Eigen::Matrix3Xd& 
 void CentreEvaluator::weightedHessian(const CollisionCentre& centre, const Eigen::Vector3d& w,
                                       Eigen::MatrixXd& into) const {
   if (centre.source != CollisionCentre::Source::kRobotSphere) {
-    const int n = static_cast<int>(variables(centre).size());
+    const int n = dimension_ + (centre.source == CollisionCentre::Source::kTurningBody ? 1 : 0);
     into.setZero(n, n);
     if (n > dimension_) {  // only the turn enters nonlinearly: d2/ds2 R offset = -R offset / rho^2
       const TurnedOffset t = turnedOffset(centre, free_state_, dimension_);
@@ -132,7 +132,7 @@ void CentreEvaluator::weightedThirdDerivative(const CollisionCentre& centre,
                                               const Eigen::Vector3d& w, const Eigen::VectorXd& v,
                                               Eigen::MatrixXd& into) const {
   if (centre.source != CollisionCentre::Source::kRobotSphere) {
-    const int n = static_cast<int>(variables(centre).size());
+    const int n = dimension_ + (centre.source == CollisionCentre::Source::kTurningBody ? 1 : 0);
     into.setZero(n, n);
     if (n > dimension_) {  // d3/ds3 R offset = -(dR/dyaw) offset / rho^3
       const TurnedOffset t = turnedOffset(centre, free_state_, dimension_);

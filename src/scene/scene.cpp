@@ -27,8 +27,6 @@ Footprint footprintOf(const SceneBody& body) {
   return footprint;
 }
 
-namespace {}  // namespace
-
 double boundingRadius(const SceneBody& body) {
   if (body.spheres.empty()) return body.radius;
   double radius = 0.0;
@@ -48,12 +46,23 @@ void turnAboutPressureCentre(SceneBody& body, double turning_radius) {
                             : limitSurfaceRadius(footprintOf(body), Eigen::Vector2d::Zero());
 }
 
+namespace {
+
+constexpr double kMaxYaw = 1e4;  // radians: s = rho yaw stays far from overflow
+
+}  // namespace
+
 std::string turningBodyProblem(const SceneBody& body) {
   if (!body.turns) return "";
   if (body.actuated) return "turns and is actuated: only passive bodies turn";
-  if (!std::isfinite(body.yaw)) return "has a yaw that is not finite";
-  if (!(body.turning_radius > 0.0) || !std::isfinite(body.turning_radius)) {
-    return "needs a finite turning radius > 0 (limitSurfaceRadius of its footprint)";
+  if (body.spheres.size() < 2) {
+    return "turns but is one sphere, the same at every yaw: give it several spheres";
+  }
+  if (!(std::fabs(body.yaw) <= kMaxYaw)) return "has a yaw that is not finite or beyond 1e4 rad";
+  const double size = boundingRadius(body);
+  if (!(body.turning_radius >= 1e-3 * size && body.turning_radius <= 1e3 * size)) {
+    return "needs a turning radius within 1e-3 to 1e3 times its size (by default its "
+           "footprint's limitSurfaceRadius)";
   }
   const Footprint footprint = footprintOf(body);
   double extent = 0.0;

@@ -54,18 +54,18 @@ Box reachableBox(const SceneTask& task, int free_body, const Eigen::Vector3d& of
                  double reach) {
   const SceneBody& body = task.scene.bodies()[free_body];
   const int dim = task.scene.dimension();
-  Eigen::VectorXd offset = offset3.head(dim);
-  // A turning body's sphere: its offset turned by the start yaw, anywhere on its circle later.
-  Eigen::VectorXd slack = Eigen::VectorXd::Zero(dim);
-  if (body.turns) {
+  Eigen::VectorXd offset = offset3.head(dim);                         // at the start
+  Eigen::VectorXd clip = offset, slack = Eigen::VectorXd::Zero(dim);  // within the workspace
+  if (body.turns) {  // turned by the start yaw, and anywhere on its circle later
     offset.head<2>() = Eigen::Rotation2Dd(body.yaw) * offset3.head<2>();
+    clip.head<2>().setZero();
     slack.head<2>().setConstant(offset3.head<2>().norm());
   }
   const Eigen::VectorXd centre = body.position + offset;
   const BodyTask& t = task.bodies[free_body];
   Box box{centre.array() - reach, centre.array() + reach};
-  if (t.workspace_lower.size()) box.low = box.low.cwiseMax(t.workspace_lower + offset - slack);
-  if (t.workspace_upper.size()) box.high = box.high.cwiseMin(t.workspace_upper + offset + slack);
+  if (t.workspace_lower.size()) box.low = box.low.cwiseMax(t.workspace_lower + clip - slack);
+  if (t.workspace_upper.size()) box.high = box.high.cwiseMin(t.workspace_upper + clip + slack);
   return box;
 }
 
@@ -173,9 +173,9 @@ std::string bodiesProblem(const Scene& scene, const std::vector<BodyTask>& bodie
     if (t.target_weight > 0.0 && t.target.size() == 0) return who + " has a weight but no target";
     problem = turningBodyProblem(body);
     if (!problem.empty()) return who + " " + problem;
-    if (!std::isfinite(t.target_yaw) || !(t.target_yaw_weight >= 0.0) ||
+    if (!(std::fabs(t.target_yaw) <= 1e4) || !(t.target_yaw_weight >= 0.0) ||
         !std::isfinite(t.target_yaw_weight)) {
-      return who + ": the target yaw and its weight must be finite (weight >= 0)";
+      return who + ": the target yaw (within 1e4 rad) and its weight must be finite (weight >= 0)";
     }
     if (t.target_yaw_weight > 0.0 && !body.turns)
       return who + " has a target yaw but does not turn";
@@ -281,6 +281,17 @@ std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
   if (static_cast<int>(scene.bodies().size()) > limits.max_bodies) {
     return "too many bodies: " + std::to_string(scene.bodies().size()) + " > " +
            std::to_string(limits.max_bodies);
+  }
+  size_t free_spheres = 0;
+  for (const SceneBody& body : scene.bodies()) free_spheres += body.spheres.size();
+  if (static_cast<int>(free_spheres) > limits.max_spheres) {
+    return "too many collision spheres on free bodies: " + std::to_string(free_spheres) + " > " +
+           std::to_string(limits.max_spheres);
+  }
+  for (const SceneBody& body : scene.bodies()) {
+    if (body.turns && scene.hasRobot()) {
+      return "body '" + body.name + "' turns: bodies turn only in scenes without a robot (yet)";
+    }
   }
   if (static_cast<int>(scene.obstacles().size()) > limits.max_obstacles) {
     return "too many obstacles (limit " + std::to_string(limits.max_obstacles) + ")";

@@ -49,7 +49,9 @@ int PlanStructure::largestElements() const {
 std::string movingBodyName(const SceneBody& body) {
   std::ostringstream text;
   text << body.name << " (radius " << body.radius << ", "
-       << (body.actuated ? "actuated" : "passive") << ")";
+       << (body.actuated ? "actuated" : "passive");
+  if (body.turns) text << ", turning, rho " << body.turning_radius;
+  text << ")";
   return text.str();
 }
 

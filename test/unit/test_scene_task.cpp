@@ -252,6 +252,14 @@ TEST(TaskWithARobot, ValidationNamesTheProblem) {
   SceneTask touching = fesd::taskOn(
       fesd::robotInScene(task.scene.robotPointer(), Eigen::Vector3d::Zero(), overlapping));
   EXPECT_EQ(fesd::validateTask(touching, limits), "disc/hand/sphere_1 overlap at the start");
+  // A turning body (the corner task's box, far from the arm): not in robot scenes yet.
+  fesd::Scene with_box(2);
+  with_box.bodies().push_back(fesd_test::boxIntoACorner().scene.bodies()[1]);
+  with_box.bodies().back().position = Eigen::Vector2d(5.0, 5.0);
+  const SceneTask turning = fesd::taskOn(
+      fesd::robotInScene(task.scene.robotPointer(), Eigen::Vector3d::Zero(), with_box));
+  EXPECT_EQ(fesd::validateTask(turning, limits),
+            "body 'box' turns: bodies turn only in scenes without a robot (yet)");
 }
 
 TEST(TaskWithARobot, PairsBeyondReachArePruned) {

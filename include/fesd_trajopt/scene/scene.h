@@ -88,8 +88,9 @@ Footprint footprintOf(const SceneBody& body);
 /// offsets turned by its yaw) and its offsets with it, and sets its turning radius to the
 /// footprint's limitSurfaceRadius unless `turning_radius` > 0 is given.
 void turnAboutPressureCentre(SceneBody& body, double turning_radius = 0.0);
-/// What makes a body unfit to turn ("" if nothing, or if it does not turn): actuated, a
-/// non-finite yaw, no turning radius, spheres whose centre of pressure is not its position.
+/// What makes a body unfit to turn ("" if nothing, or if it does not turn): actuated, one sphere
+/// only, a yaw that is not finite or beyond 1e4 rad, a turning radius not within 1e-3 to 1e3
+/// times its bounding radius, spheres whose centre of pressure is not its position.
 std::string turningBodyProblem(const SceneBody& body);
 
 /// Whether `name` names the collision body `side`: as that body, obstacle or wall, or as the

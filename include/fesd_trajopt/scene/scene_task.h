@@ -81,7 +81,7 @@ double targetTolerance(double target_weight);
 /// Limits on the size of a task (requests beyond them are refused).
 struct TaskLimits {
   int max_bodies = 30;
-  int max_spheres = 200;  ///< a robot's collision spheres (they are not bodies)
+  int max_spheres = 200;  ///< a robot's collision spheres, and those of the free bodies
   int max_obstacles = 50;
   int max_walls = 20;
   int max_intervals = 200;
