@@ -1,10 +1,15 @@
 #include "bench_scenes.h"
 
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
+#include "bench_args.h"
 #include "fesd_trajopt/examples/manipulation_example.h"
+#include "fesd_trajopt/planning/accuracy_ladder.h"
+#include "fesd_trajopt/solver/stopwatch.h"
 
 namespace fesd_bench {
 
@@ -29,6 +34,25 @@ fesd::SceneSolveOptions nodeDefaultOptions(double budget) {
   options.verification.num_stages = 3;
   options.verification.num_elements = 6;
   return options;
+}
+
+double timeDefaultScene(const fesd::SceneSolveOptions& options, double accuracy) {
+  fesd::SceneOutcome reference;
+  std::vector<double> runs;
+  for (int run = 0; run < 3; ++run) {
+    fesd::Stopwatch time;
+    reference = fesd::solveToAccuracy(fesd::manipulation_example::task(40), fesd::TaskLimits{},
+                                      options, accuracy);
+    runs.push_back(time.wallSeconds());
+  }
+  const double seconds = median({runs[1], runs[2]});
+  std::printf(
+      "# default scene, node default request: %s, %d Ipopt iterations, %.3f s (first run %.3f s), "
+      "verification error %.3g, open loop %.3g, gain %.3g\n",
+      fesd::statusName(reference.status).c_str(), reference.report.iterations, seconds, runs[0],
+      reference.verification.error, reference.verification.open_loop_error,
+      reference.verification.open_loop_gain);
+  return seconds;
 }
 
 std::shared_ptr<const fesd::KinematicModel> shippedRobot(const std::string& file) {

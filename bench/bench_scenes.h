@@ -18,6 +18,11 @@ fesd::SceneTask showcaseWithRocks(int intervals, int rocks);
 /// accuracy target is 1e-2 (solveToAccuracy).
 fesd::SceneSolveOptions nodeDefaultOptions(double budget);
 
+/// The node's default request of the default scene with `options` up the ladder to `accuracy`,
+/// three times (the first pays for what a node pays once: analyses, caches): prints a "#" line
+/// and returns the median of the other two runs' seconds.
+double timeDefaultScene(const fesd::SceneSolveOptions& options, double accuracy);
+
 /// A robot of config/robots, built from its URDF; throws naming the file if that fails.
 std::shared_ptr<const fesd::KinematicModel> shippedRobot(const std::string& file);
 

@@ -24,5 +24,6 @@ int kkt(const Arguments& args);
 int kktSolvers(const Arguments& args);
 int robotPush(const Arguments& args);
 int mpccMethods(const Arguments& args);
+int pushT(const Arguments& args);
 
 }  // namespace fesd_bench

@@ -36,6 +36,12 @@ const std::map<std::string, Command>& commands() {
         "Continue after a failed relaxed NLP or stop: status, failed NLPs, iterations, time and\n"
         "    error of circle/chain simulations and showcase OCPs with both settings, CSV.\n"
         "    --stages=1,2,3,4 --steps=5,10,20,40 --intervals=10,20,30"}},
+      {"push-t",
+       {fesd_bench::pushT,
+        "Push-T (a T of 12 spheres that turns, one disc pusher, the benchmark's target pose)\n"
+        "    from random starts through the node's default request: status, seconds, iterations,\n"
+        "    position and yaw errors, CSV and a summary against the default scene.\n"
+        "    --starts=16 --first-seed=0 --budget=60 --accuracy=1e-2"}},
       {"kkt",
        {fesd_bench::kkt,
         "The showcase plus --rocks passive discs in reach: NLP sizes, densest Jacobian rows and\n"

@@ -54,22 +54,7 @@ int nodeDefaultSweep(const Arguments& args, const std::vector<std::string>& fami
   const double horizon = args.number("horizon", 0.0);
   const int intervals = args.integer("intervals", 0);
   args.rejectUnused();
-  // The second of three runs: the first pays for what a node pays once (analyses, caches).
-  fesd::SceneOutcome reference;
-  std::vector<double> default_runs;
-  for (int run = 0; run < 3; ++run) {
-    fesd::Stopwatch default_time;
-    reference = fesd::solveToAccuracy(fesd::manipulation_example::task(40), fesd::TaskLimits{},
-                                      options, accuracy);
-    default_runs.push_back(default_time.wallSeconds());
-  }
-  const double default_seconds = median({default_runs[1], default_runs[2]});
-  std::printf(
-      "# default scene, node default request: %s, %d Ipopt iterations, %.3f s (first run %.3f s), "
-      "verification error %.3g, open loop %.3g, gain %.3g\n",
-      fesd::statusName(reference.status).c_str(), reference.report.iterations, default_seconds,
-      default_runs[0], reference.verification.error, reference.verification.open_loop_error,
-      reference.verification.open_loop_gain);
+  const double default_seconds = timeDefaultScene(options, accuracy);
   std::printf(
       "family,seed,status,wall_s,ratio,ipopt_iterations,objective,rungs,pair_rounds,graze_rounds,"
       "verification_error,open_loop_error,open_loop_gain,grazes,verification_s,target_distance,"

@@ -1,0 +1,60 @@
+// push-t: the Push-T benchmark in our units (examples/push_t.h) through the node's default
+// request: per random start the status, seconds (and their ratio to the default scene's in the
+// same run), iterations, the T's position and yaw errors and the verification error; CSV, then a
+// summary.
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "bench_args.h"
+#include "bench_scenes.h"
+#include "commands.h"
+#include "fesd_trajopt/examples/push_t.h"
+#include "fesd_trajopt/planning/accuracy_ladder.h"
+#include "fesd_trajopt/solver/stopwatch.h"
+
+namespace fesd_bench {
+
+int pushT(const Arguments& args) {
+  const int first_seed = args.integer("first-seed", 0);
+  const int starts = args.integer("starts", 16);
+  const fesd::SceneSolveOptions options = nodeDefaultOptions(args.number("budget", 60.0));
+  const double accuracy = args.number("accuracy", 1e-2);
+  args.rejectUnused();
+  const double default_seconds = timeDefaultScene(options, accuracy);
+  std::printf(
+      "seed,status,wall_s,ratio,ipopt_iterations,start_yaw_deg,turn_deg,position_error,"
+      "yaw_error_deg,verification_error\n");
+  std::vector<double> walls;
+  int successes = 0;
+  for (int seed = first_seed; seed < first_seed + starts; ++seed) {
+    const fesd::SceneTask task = fesd::push_t::randomStart(seed);
+    fesd::Stopwatch stopwatch;
+    const fesd::SceneOutcome outcome =
+        fesd::solveToAccuracy(task, fesd::TaskLimits{}, options, accuracy);
+    const double seconds = stopwatch.wallSeconds();
+    walls.push_back(seconds);
+    successes += outcome.status == fesd::SolveStatus::kSuccess;
+    const Eigen::VectorXd end = outcome.trajectory.finalState();
+    const double degrees = 180.0 / M_PI;
+    const double start_yaw = task.scene.bodies()[1].yaw;
+    std::printf("%d,%s,%.3f,%.1f,%d,%.1f,%.1f,%.3g,%.3g,%.3g\n", seed,
+                fesd::statusName(outcome.status).c_str(), seconds, seconds / default_seconds,
+                outcome.report.iterations, start_yaw * degrees,
+                (task.bodies[1].target_yaw - start_yaw) * degrees,
+                (task.scene.position(1, end) - task.bodies[1].target).norm(),
+                std::fabs(task.scene.yaw(1, end) - task.bodies[1].target_yaw) * degrees,
+                outcome.verification.error);
+    std::fflush(stdout);
+  }
+  const double middle = median(walls);
+  double slowest = 0.0;
+  for (double wall : walls) slowest = std::max(slowest, wall);
+  std::printf(
+      "# %d starts: %d SUCCESS; wall time median %.3f s, slowest %.3f s (%.1fx and %.1fx the "
+      "default scene's)\n",
+      starts, successes, middle, slowest, middle / default_seconds, slowest / default_seconds);
+  return 0;
+}
+
+}  // namespace fesd_bench
