@@ -11,7 +11,6 @@
 #include "bench_args.h"
 #include "bench_scenes.h"
 #include "commands.h"
-#include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/examples/planning_scenes.h"
 #include "fesd_trajopt/planning/accuracy_ladder.h"
 #include "fesd_trajopt/solver/stopwatch.h"
