@@ -28,6 +28,14 @@ double wallSlack(const SceneBody& body, double radius, const Eigen::VectorXd& no
 
 }  // namespace
 
+SceneBody boundingDisc(SceneBody body) {
+  body.radius = boundingRadius(body);
+  body.spheres.clear();
+  body.turns = false;
+  body.yaw = body.turning_radius = 0.0;
+  return body;
+}
+
 SceneTask boundingDiscTask(const SceneTask& task) {
   SceneTask discs = task;
   // A wall moves back by the most any body of spheres gets nearer to it than its disc at the yaw
@@ -44,28 +52,31 @@ SceneTask boundingDiscTask(const SceneTask& task) {
     wall.offset -= slack;
   }
   for (size_t b = 0; b < discs.scene.bodies().size(); ++b) {
-    SceneBody& body = discs.scene.bodies()[b];
-    body.radius = boundingRadius(body);
-    body.spheres.clear();
-    body.turns = false;
-    body.yaw = body.turning_radius = 0.0;
+    discs.scene.bodies()[b] = boundingDisc(discs.scene.bodies()[b]);
     discs.bodies[b].target_yaw = discs.bodies[b].target_yaw_weight = 0.0;
   }
   discs.allowed_pairs.clear();
   return discs;
 }
 
-ContactPair boundingDiscPair(const Scene& scene, const ContactPair& pair) {
+BoundingDiscPairs boundingDiscPairs(const Scene& scene, const std::vector<ContactPair>& pairs) {
   const std::vector<CollisionBody> bodies = scene.collisionBodies();
-  ContactPair disc = pair;
-  disc.body = bodies.at(pair.body).free_body;
-  if (pair.kind == ContactPair::Kind::kBody) disc.other = bodies.at(pair.other).free_body;
-  return disc;
+  BoundingDiscPairs discs;
+  for (const ContactPair& pair : pairs) {
+    ContactPair disc = pair;
+    disc.body = bodies.at(pair.body).free_body;
+    if (pair.kind == ContactPair::Kind::kBody) disc.other = bodies.at(pair.other).free_body;
+    const auto found = std::find(discs.pairs.begin(), discs.pairs.end(), disc);
+    discs.disc_of.push_back(static_cast<int>(found - discs.pairs.begin()));
+    if (found == discs.pairs.end()) discs.pairs.push_back(disc);
+  }
+  return discs;
 }
 
 TrajectoryGuess guessOfSpheres(const SceneTask& task, const std::vector<ContactPair>& pairs,
-                               const std::vector<int>& disc_of, int disc_pair_count,
-                               const TrajectoryGuess& disc_guess) {
+                               const BoundingDiscPairs& discs, const TrajectoryGuess& disc_guess) {
+  const std::vector<int> disc_of = discs.disc_of;
+  const int disc_pair_count = static_cast<int>(discs.pairs.size());
   const Scene scene = task.scene;  // the guess outlives the caller's task (a proxy's)
   const int dim = scene.dimension();
   const Scene disc_scene = boundingDiscTask(task).scene;

@@ -232,17 +232,9 @@ Eigen::VectorXd endOffset(const PushLeg& leg, size_t k) {
 
 PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs) {
   if (hasCompositeBodies(task.scene)) {
-    std::vector<ContactPair> disc_pairs;
-    std::vector<int> disc_of;
-    for (const ContactPair& pair : pairs) {
-      const ContactPair disc = boundingDiscPair(task.scene, pair);
-      const auto found = std::find(disc_pairs.begin(), disc_pairs.end(), disc);
-      disc_of.push_back(static_cast<int>(found - disc_pairs.begin()));
-      if (found == disc_pairs.end()) disc_pairs.push_back(disc);
-    }
-    PushPlan plan = planPushes(boundingDiscTask(task), disc_pairs);
-    plan.guess =
-        guessOfSpheres(task, pairs, disc_of, static_cast<int>(disc_pairs.size()), plan.guess);
+    const BoundingDiscPairs discs = boundingDiscPairs(task.scene, pairs);
+    PushPlan plan = planPushes(boundingDiscTask(task), discs.pairs);
+    plan.guess = guessOfSpheres(task, pairs, discs, plan.guess);
     return plan;
   }
   const Scene& scene = task.scene;

@@ -5,6 +5,7 @@
 
 #include "fesd_trajopt/kinematics/forward_kinematics.h"
 #include "fesd_trajopt/kinematics/inverse_kinematics.h"
+#include "fesd_trajopt/planning/bounding_discs.h"
 #include "fesd_trajopt/planning/push_plan.h"
 
 namespace fesd {
@@ -38,11 +39,8 @@ PushPlan proxyPlan(const SceneTask& task, int sphere, int body, const Eigen::Vec
   proxy.scene.bodies().push_back({s.name, s.radius, start.head(dim), true});
   // The body as its bounding disc (the planner plans discs): the proxy's pairs begin with the
   // one between the sphere's disc and it.
-  SceneBody pushed = scene.bodies()[body];
-  pushed.radius = boundingRadius(pushed);
-  pushed.spheres.clear();
-  pushed.actuated = false;
-  proxy.scene.bodies().push_back(pushed);
+  proxy.scene.bodies().push_back(boundingDisc(scene.bodies()[body]));
+  proxy.scene.bodies().back().actuated = false;
   proxy.scene.obstacles() = scene.obstacles();
   proxy.scene.walls() = scene.walls();
   proxy.bodies.resize(2);

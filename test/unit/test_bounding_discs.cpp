@@ -36,10 +36,13 @@ TEST(BoundingDiscs, EachBodyIsOneDiscThatHoldsItsSpheres) {
   EXPECT_EQ(discs.scene.stateSize(), 4);
   EXPECT_FALSE(discs.bodies[1].hasYawTarget());
   EXPECT_TRUE(discs.bodies[1].hasTarget());
-  // pusher/bar/sphere_1 (collision bodies 0 and 2) is the discs' pusher/bar (0 and 1).
-  const fesd::ContactPair disc =
-      fesd::boundingDiscPair(task.scene, {0, fesd::ContactPair::Kind::kBody, 2});
-  EXPECT_EQ(disc, (fesd::ContactPair{0, fesd::ContactPair::Kind::kBody, 1}));
+  // pusher/bar/sphere_0 and pusher/bar/sphere_1 (collision bodies 0 and 1, 2) are both the
+  // discs' pusher/bar (0 and 1).
+  const fesd::BoundingDiscPairs disc_pairs =
+      fesd::boundingDiscPairs(task.scene, task.scene.allPairs());
+  ASSERT_EQ(disc_pairs.pairs.size(), 1u);
+  EXPECT_EQ(disc_pairs.pairs[0], (fesd::ContactPair{0, fesd::ContactPair::Kind::kBody, 1}));
+  EXPECT_EQ(disc_pairs.disc_of, (std::vector<int>{0, 0}));
 }
 
 TEST(BoundingDiscs, TheDiscGuessPutsEachForceOnTheNearestSpherePair) {
@@ -47,10 +50,11 @@ TEST(BoundingDiscs, TheDiscGuessPutsEachForceOnTheNearestSpherePair) {
   const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();
   ASSERT_EQ(pairs.size(), 2u);  // the pusher with each sphere
   // The discs' guess: the pusher at (-0.85, 0.4), touching the bar's disc, pressing with 3.
-  fesd::TrajectoryGuess discs;
-  discs.state = [](double) { return Eigen::Vector4d(-0.85, 0.4, 0.0, 0.0).eval(); };
-  discs.multipliers = [](double) { return Eigen::VectorXd::Constant(1, 3.0); };
-  const fesd::TrajectoryGuess guess = fesd::guessOfSpheres(task, pairs, {0, 0}, 1, discs);
+  fesd::TrajectoryGuess disc_guess;
+  disc_guess.state = [](double) { return Eigen::Vector4d(-0.85, 0.4, 0.0, 0.0).eval(); };
+  disc_guess.multipliers = [](double) { return Eigen::VectorXd::Constant(1, 3.0); };
+  const fesd::TrajectoryGuess guess =
+      fesd::guessOfSpheres(task, pairs, fesd::boundingDiscPairs(task.scene, pairs), disc_guess);
   const Eigen::VectorXd x = guess.state(1.0);
   ASSERT_EQ(x.size(), 5);
   EXPECT_EQ(x.head(4), Eigen::Vector4d(-0.85, 0.4, 0.0, 0.0));
