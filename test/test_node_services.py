@@ -557,6 +557,48 @@ class NodeServices(unittest.TestCase):
         contact = [e for e in response.solution.switches if e.kind == SwitchEvent.CONTACT]
         self.assertAlmostEqual(contact[0].time, 0.55, delta=1e-8)
 
+    def test_a_urdf_link_of_spheres_on_a_planar_joint_turns_and_is_answered_as_its_joint(self):
+        # turning_bar_request's bar moved 1 along x, as a link on a planar joint whose frame is
+        # turned a quarter turn: the same motion, and joint coordinates in that frame.
+        request = self.turning_bar_request()
+        request.urdf = """<robot name="r"><link name="world"/><link name="bar">
+            <collision><origin xyz="-0.3 0 0"/><geometry><sphere radius="0.25"/></geometry></collision>
+            <collision><origin xyz="0.3 0 0"/><geometry><sphere radius="0.25"/></geometry></collision>
+          </link><joint name="bar_joint" type="planar"><parent link="world"/><child link="bar"/>
+            <origin xyz="1 0 0" rpy="0 0 1.5707963267948966"/><axis xyz="0 0 1"/></joint></robot>"""
+        request.bodies = [body("pusher", add=True, radius=0.2, initial_position=Point(0, 0.3, 0),
+                               role=BodySpec.ROLE_ACTUATED)]
+        response = self.simulate(request)
+        self.assertEqual(response.status, SUCCESS, response.message)
+        bar = [b for b in response.solution.bodies if b.name == "bar"][0]
+        self.assertAlmostEqual(bar.yaws[-1] * bar.turning_radius, -0.2929045355, delta=1e-5)
+        self.assertAlmostEqual(bar.positions[-1].x, 1.3330495, delta=1e-5)
+        self.assertAlmostEqual(bar.positions[-1].y, -0.0464659, delta=1e-5)
+        motion = response.solution.joint_trajectory
+        self.assertEqual(motion.joint_names, ["bar_joint/x", "bar_joint/y", "bar_joint/theta"])
+        self.assertEqual(len(motion.points), len(response.solution.times))
+        for start in motion.points[0].positions:
+            self.assertAlmostEqual(start, 0.0, delta=1e-12)
+        x, y, theta = motion.points[-1].positions
+        self.assertAlmostEqual(x, -0.0464659, delta=1e-5)
+        self.assertAlmostEqual(y, -0.3330495, delta=1e-5)
+        self.assertAlmostEqual(theta, bar.yaws[-1], delta=1e-12)
+
+        request.bodies.append(body("bar", override_initial_position=True,
+                                   initial_position=Point(1, 0.5, 0), initial_yaw=0.1))
+        response = self.simulate(request)
+        self.assertEqual(response.status, SUCCESS, response.message)
+        bar = [b for b in response.solution.bodies if b.name == "bar"][0]
+        self.assertAlmostEqual(bar.yaws[0], 0.1, delta=1e-15)
+        self.assertAlmostEqual(bar.positions[0].y, 0.5, delta=1e-15)
+        x, y, theta = response.solution.joint_trajectory.points[0].positions
+        self.assertAlmostEqual(x, 0.5, delta=1e-12)  # the joint's x is the world's y
+        self.assertAlmostEqual(theta, 0.1, delta=1e-15)
+        request.bodies[-1] = body("bar", radius=0.3)
+        response = self.simulate(request)
+        self.assertEqual(response.status, INVALID_REQUEST, response.message)
+        self.assertIn("collision spheres in the URDF", response.message)
+
     def test_hostile_turning_bodies_are_refused_and_the_node_keeps_serving(self):
         def bar(**fields):
             request = small_default()

@@ -95,7 +95,8 @@ std::string applyTurning(const fesd_trajopt::BodySpec& spec, const fesd::TaskLim
   }
   const std::string spheres = requestedSpheres(spec, limits, body);
   if (!spheres.empty()) return spheres;
-  if (!spec.turns) {
+  const bool turns_in_urdf = body.turns;  // a link of spheres on a planar joint
+  if (!spec.turns && !turns_in_urdf) {
     if (spec.initial_yaw != 0.0 || spec.target_yaw_weight > 0.0 || spec.turning_radius > 0.0) {
       return " has a yaw, a target yaw or a turning radius but does not turn (set turns)";
     }
@@ -103,12 +104,12 @@ std::string applyTurning(const fesd_trajopt::BodySpec& spec, const fesd::TaskLim
     return "";
   }
   if (body.actuated) return " turns and is actuated: only passive bodies turn";
-  body.yaw = spec.initial_yaw;
+  if (!turns_in_urdf || spec.override_initial_position) body.yaw = spec.initial_yaw;
   // The request's position is the spheres' centre of pressure (BodySpec.msg): their offsets
   // move, the body does not; a URDF link's spheres are where the URDF puts them: it moves.
   const Eigen::VectorXd position = body.position;
   fesd::turnAboutPressureCentre(body, spec.turning_radius);
-  if (spec.add) body.position = position;
+  if (spec.add || spec.override_initial_position) body.position = position;
   body.radius = fesd::boundingRadius(body);
   task.target_yaw = spec.target_yaw;
   task.target_yaw_weight = spec.target_yaw_weight;
@@ -139,7 +140,7 @@ std::string allowPairs(const std::vector<fesd_trajopt::ContactPair>& allowed,
 }
 
 /// The robot of `urdf_xml` (planar inferred unless the request forces it) into `read`; notes on
-/// ignored shapes; "" or why not (a request's radius for a body the URDF gives several spheres).
+/// ignored shapes; "" or why not.
 std::string readRobot(const NodeConfig& config, const SceneFields& request,
                       const std::string& urdf_xml, fesd::RobotForScene& read,
                       std::vector<std::string>& notes) {
@@ -152,14 +153,6 @@ std::string readRobot(const NodeConfig& config, const SceneFields& request,
   if (!read.error.empty()) return read.error;
   for (const std::string& shape : read.robot->ignored_shapes) {
     notes.push_back("collision " + shape + " is not a sphere and is ignored");
-  }
-  for (const fesd::SceneBody& free : read.free_bodies) {
-    for (const fesd_trajopt::BodySpec& spec : request.bodies) {
-      if (spec.name == free.name && spec.radius > 0.0 && !free.spheres.empty()) {
-        return "body '" + free.name + "' carries " + std::to_string(free.spheres.size()) +
-               " collision spheres in the URDF: its size comes from them, not a radius";
-      }
-    }
   }
   return "";
 }
@@ -240,6 +233,10 @@ std::string applySceneFields(const NodeConfig& config, const SceneFields& reques
     fesd::BodyTask& t = task.bodies[b];
     if (spec.radius < 0.0 || std::isnan(spec.radius)) {
       return who + " has radius " + std::to_string(spec.radius) + " (must be > 0)";
+    }
+    if (spec.radius > 0.0 && !body.spheres.empty() && !spec.add) {
+      return who + " carries " + std::to_string(body.spheres.size()) +
+             " collision spheres in the URDF: its size comes from them, not a radius";
     }
     if (spec.radius > 0.0) body.radius = spec.radius;
     if (spec.override_initial_position) body.position = coordinates(spec.initial_position, dim);
@@ -328,6 +325,7 @@ TaskBuild buildTask(const NodeConfig& config, const SceneFields& request, const 
       build.notes.push_back("link '" + link + "' has no usable collision geometry and is ignored");
     }
     task.scene = urdf.scene;
+    build.planar_joints = urdf.planar_joints;
   }
   build.error = applySceneFields(config, request, task);
   if (build.error.empty() && read) build.error = applyRobotFields(*read, robot, node, task);

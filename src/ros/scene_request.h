@@ -10,6 +10,7 @@
 #include <ros/node_handle.h>
 
 #include "fesd_trajopt/scene/scene_task.h"
+#include "fesd_trajopt/scene/urdf_scene.h"
 #include "node_config.h"
 #include "robot_request.h"
 
@@ -35,8 +36,9 @@ SceneFields sceneFields(const Request& request) {
 /// A task built from the configuration, the URDF and a request's scene fields.
 struct TaskBuild {
   fesd::SceneTask task;
-  std::string error;               ///< non-empty: the request is invalid, and why
-  std::vector<std::string> notes;  ///< e.g. URDF links that were ignored
+  std::string error;                                 ///< non-empty: the request is invalid, and why
+  std::vector<std::string> notes;                    ///< e.g. URDF links that were ignored
+  std::vector<fesd::UrdfPlanarJoint> planar_joints;  ///< a scene URDF's, answered as joints
 };
 
 /// The configured defaults, the request's scene source and overrides: the scene task (horizon

@@ -262,8 +262,37 @@ std::vector<nav_msgs::Path> bodyPaths(const fesd_trajopt::Solution& solution) {
   return paths;
 }
 
-fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
-                                     const fesd::SceneOutcome& outcome) {
+namespace {
+
+/// Each planar joint's (x, y, theta) at the element boundaries, named as MoveIt names a planar
+/// joint's variables.
+void addPlanarJointTrajectory(const fesd::Scene& scene, const fesd::Trajectory& trajectory,
+                              const std::vector<fesd::UrdfPlanarJoint>& planar_joints,
+                              trajectory_msgs::JointTrajectory& motion) {
+  for (const fesd::UrdfPlanarJoint& joint : planar_joints) {
+    for (const char* variable : {"/x", "/y", "/theta"}) {
+      motion.joint_names.push_back(joint.joint + variable);
+    }
+  }
+  for (size_t i = 0; i < trajectory.states.size(); ++i) {
+    const Eigen::VectorXd& x = trajectory.states[i];
+    trajectory_msgs::JointTrajectoryPoint point;
+    for (const fesd::UrdfPlanarJoint& joint : planar_joints) {
+      const int b = joint.body;
+      const double yaw = scene.bodies()[b].turns ? scene.yaw(b, x) : 0.0;
+      const Eigen::Vector3d values =
+          fesd::planarJointValues(joint, x.segment(scene.stateIndex(b), scene.dimension()), yaw);
+      point.positions.insert(point.positions.end(), values.data(), values.data() + 3);
+    }
+    point.time_from_start = ros::Duration(trajectory.times[i]);
+    motion.points.push_back(point);
+  }
+}
+
+}  // namespace
+
+fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task, const fesd::SceneOutcome& outcome,
+                                     const std::vector<fesd::UrdfPlanarJoint>& planar_joints) {
   const fesd::Scene& scene = task.scene;
   const fesd::Trajectory& trajectory = outcome.trajectory;
   const fesd::MpccReport& report = outcome.report;
@@ -285,6 +314,9 @@ fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
     solution.switches.push_back(switchMessage(event, first, second));
   }
   if (scene.hasRobot()) addJointTrajectories(task, outcome, solution);
+  if (!planar_joints.empty()) {
+    addPlanarJointTrajectory(scene, trajectory, planar_joints, solution.joint_trajectory);
+  }
   return solution;
 }
 

@@ -7,6 +7,7 @@
 #include "fesd_trajopt/discretization/trajectory.h"
 #include "fesd_trajopt/planning/scene_solver.h"
 #include "fesd_trajopt/scene/scene_task.h"
+#include "fesd_trajopt/scene/urdf_scene.h"
 #include "fesd_trajopt/solver/mpcc_solver.h"
 
 namespace fesd_ros {
@@ -26,9 +27,10 @@ void setUnsolved(Answer& answer, uint8_t status, const std::string& message) {
 /// The Solution message of a scene task's outcome: times, each body's positions, controls and
 /// distance from its target, the full state, switches and pair decisions (named by the pairs'
 /// sides, a robot sphere `<link>/sphere_<k>` first), statistics; with a robot its
-/// joint_trajectory and joint_commands (addJointTrajectories).
-fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task,
-                                     const fesd::SceneOutcome& outcome);
+/// joint_trajectory and joint_commands (addJointTrajectories), else the URDF's planar joints'
+/// coordinates in joint_trajectory.
+fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task, const fesd::SceneOutcome& outcome,
+                                     const std::vector<fesd::UrdfPlanarJoint>& planar_joints);
 
 /// A point from a planar (z = 0) or spatial vector.
 geometry_msgs::Point point(const Eigen::VectorXd& p);

@@ -319,7 +319,7 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
                   << task.num_intervals << " intervals x " << outcome.structure.largestElements()
                   << " elements, n_s = " << outcome.structure.stages);
   fesd_trajopt::Solution& solution = answer.solution;
-  solution = sceneSolution(task, outcome);
+  solution = sceneSolution(task, outcome, build.planar_joints);
   solution.status = statusCode(outcome.status);
   solution.message = outcome.message;  // with the warning on unresolved switches
   solution.statistics.start =
@@ -473,7 +473,7 @@ void TrajoptNode::handleSimulate(const fesd_trajopt::Simulate::Request& request,
   const fesd::SceneOutcome outcome =
       fesd::simulateSceneTask(task, controls, config_.limits, options);
   if (!outcome.invalid.empty()) return refuse(response, outcome.invalid);
-  response.solution = sceneSolution(task, outcome);
+  response.solution = sceneSolution(task, outcome, build.planar_joints);
   response.solution.message = outcome.message;
   response.solution.header.stamp = ros::Time::now();
   response.solution.header.frame_id = config_.frame_id;

@@ -1,13 +1,85 @@
 #include "fesd_trajopt/scene/urdf_scene.h"
 
+#include <cmath>
 #include <vector>
 
 #include <urdf_parser/urdf_parser.h>
-#include <Eigen/Geometry>
 
 #include "fesd_trajopt/kinematics/urdf_pose.h"
 
 namespace fesd {
+namespace {
+
+struct LinkSphere {
+  Eigen::VectorXd centre;
+  double radius;
+};
+
+/// The link's collision spheres (and, in planar scenes, cylinders normal to the plane) at `pose`.
+std::vector<LinkSphere> linkSpheres(const urdf::Link& link, const Eigen::Isometry3d& pose,
+                                    int dim) {
+  std::vector<urdf::CollisionSharedPtr> collisions = link.collision_array;
+  if (collisions.empty() && link.collision) collisions.push_back(link.collision);
+  std::vector<LinkSphere> spheres;
+  for (const urdf::CollisionSharedPtr& collision : collisions) {
+    if (!collision || !collision->geometry) continue;
+    const Eigen::Isometry3d frame = pose * isometryFromUrdf(collision->origin);
+    double radius = 0.0;
+    if (collision->geometry->type == urdf::Geometry::SPHERE) {
+      radius = static_cast<const urdf::Sphere&>(*collision->geometry).radius;
+    } else if (dim == 2 && collision->geometry->type == urdf::Geometry::CYLINDER &&
+               std::abs(frame.linear().col(2).z()) > 1.0 - 1e-6) {
+      radius = static_cast<const urdf::Cylinder&>(*collision->geometry).radius;
+    }
+    if (radius != 0.0) spheres.push_back({frame.translation().head(dim), radius});
+  }
+  return spheres;
+}
+
+std::string sphereName(const std::string& link, size_t k, size_t count) {
+  return count == 1 ? link : link + "/sphere_" + std::to_string(k);
+}
+
+/// One body of a moving link's spheres: the sphere itself, or the spheres about their mean.
+SceneBody linkBody(const std::string& link, const std::vector<LinkSphere>& spheres, int dim) {
+  SceneBody body{link, spheres[0].radius, spheres[0].centre, false};
+  if (spheres.size() == 1) return body;
+  body.position = Eigen::VectorXd::Zero(dim);
+  for (const LinkSphere& sphere : spheres) body.position += sphere.centre / spheres.size();
+  for (size_t k = 0; k < spheres.size(); ++k) {
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+    offset.head(dim) = spheres[k].centre - body.position;
+    body.spheres.push_back({sphereName(link, k, spheres.size()), offset, spheres[k].radius});
+  }
+  body.radius = boundingRadius(body);
+  return body;
+}
+
+/// The planar joint's turn sign (+-1 for an axis along +-z of its frame and of the world), 0 if
+/// it is no planar joint about the scene's z.
+double planarTurnSign(const urdf::Joint& joint, const Eigen::Isometry3d& origin) {
+  if (joint.type != urdf::Joint::PLANAR) return 0.0;
+  const Eigen::Vector3d axis =
+      Eigen::Vector3d(joint.axis.x, joint.axis.y, joint.axis.z).normalized();
+  const Eigen::Vector3d normal = origin.linear() * axis;
+  if (std::abs(std::abs(axis.z()) - 1.0) > 1e-9 || std::abs(std::abs(normal.z()) - 1.0) > 1e-9) {
+    return 0.0;
+  }
+  return normal.z() > 0.0 ? 1.0 : -1.0;
+}
+
+}  // namespace
+
+Eigen::Vector3d planarJointValues(const UrdfPlanarJoint& joint, const Eigen::VectorXd& position,
+                                  double yaw) {
+  const int dim = static_cast<int>(position.size());
+  Eigen::Vector3d link = Eigen::Vector3d::Zero();
+  link.head(dim) = position - joint.centre;
+  link.head<2>() += joint.centre.head<2>() - Eigen::Rotation2Dd(yaw) * joint.centre.head<2>();
+  if (dim == 2) link.z() = joint.origin.translation().z();
+  const Eigen::Vector3d local = joint.origin.inverse() * link;
+  return {local.x(), local.y(), joint.turn_sign * yaw};
+}
 
 UrdfScene sceneFromUrdf(const std::string& xml, bool planar, const UrdfLimits& limits) {
   UrdfScene result;
@@ -40,44 +112,39 @@ UrdfScene sceneFromUrdf(const std::string& xml, bool planar, const UrdfLimits& l
     urdf::LinkConstSharedPtr link;
     Eigen::Isometry3d pose;
     bool fixed;
+    double turn_sign;  ///< of its joint when planar about z from a fixed link, else 0
   };
   // An explicit stack, children pushed last-first: the depth-first order of the links without a
   // recursion as deep as the URDF's chain.
-  std::vector<Visit> stack{{model->getRoot(), Eigen::Isometry3d::Identity(), true}};
+  std::vector<Visit> stack{{model->getRoot(), Eigen::Isometry3d::Identity(), true, 0.0}};
   while (!stack.empty()) {
     const Visit visit = stack.back();
     stack.pop_back();
     const urdf::LinkConstSharedPtr& link = visit.link;
-    const urdf::CollisionSharedPtr collision = link->collision;
-    bool used = false;
-    if (collision && collision->geometry) {
-      const Eigen::Isometry3d frame = visit.pose * isometryFromUrdf(collision->origin);
-      double radius = 0.0;
-      if (collision->geometry->type == urdf::Geometry::SPHERE) {
-        radius = static_cast<const urdf::Sphere&>(*collision->geometry).radius;
-      } else if (planar && collision->geometry->type == urdf::Geometry::CYLINDER) {
-        const Eigen::Vector3d axis = frame.linear().col(2);
-        if (std::abs(axis.z()) > 1.0 - 1e-6) {
-          radius = static_cast<const urdf::Cylinder&>(*collision->geometry).radius;
-        }
+    const std::vector<LinkSphere> spheres = linkSpheres(*link, visit.pose, dim);
+    if (spheres.empty() && link != model->getRoot()) result.ignored_links.push_back(link->name);
+    if (!spheres.empty() && visit.fixed) {
+      for (size_t k = 0; k < spheres.size(); ++k) {
+        result.scene.obstacles().push_back(
+            {sphereName(link->name, k, spheres.size()), spheres[k].radius, spheres[k].centre});
       }
-      if (radius != 0.0) {
-        const Eigen::VectorXd position = frame.translation().head(dim);
-        if (visit.fixed) {
-          result.scene.obstacles().push_back({link->name, radius, position});
-        } else {
-          result.scene.bodies().push_back({link->name, radius, position, false});
-        }
-        used = true;
+    } else if (!spheres.empty()) {
+      SceneBody body = linkBody(link->name, spheres, dim);
+      if (visit.turn_sign != 0.0 && spheres.size() > 1) turnAboutPressureCentre(body);
+      if (visit.turn_sign != 0.0) {
+        result.planar_joints.push_back(
+            {link->parent_joint->name, static_cast<int>(result.scene.bodies().size()), visit.pose,
+             visit.turn_sign, body.position - visit.pose.translation().head(dim)});
       }
+      result.scene.bodies().push_back(std::move(body));
     }
-    if (!used && link != model->getRoot()) result.ignored_links.push_back(link->name);
     for (auto joint = link->child_joints.rbegin(); joint != link->child_joints.rend(); ++joint) {
       const urdf::LinkConstSharedPtr child = model->getLink((*joint)->child_link_name);
       if (!child) continue;
-      stack.push_back({child,
-                       visit.pose * isometryFromUrdf((*joint)->parent_to_joint_origin_transform),
-                       visit.fixed && (*joint)->type == urdf::Joint::FIXED});
+      const Eigen::Isometry3d pose =
+          visit.pose * isometryFromUrdf((*joint)->parent_to_joint_origin_transform);
+      stack.push_back({child, pose, visit.fixed && (*joint)->type == urdf::Joint::FIXED,
+                       visit.fixed ? planarTurnSign(**joint, pose) : 0.0});
     }
   }
   return result;

@@ -87,3 +87,101 @@ TEST(UrdfScene, AChainDeeperThanAnyCallStackIsWalkedInOrder) {
   EXPECT_EQ(chain.scene.bodies().back().name, "l19999");
   EXPECT_DOUBLE_EQ(chain.scene.bodies().back().position.x(), 19999.0);
 }
+
+namespace {
+
+// A link of three spheres (an L) on a planar joint whose frame is turned by 0.5 rad about z and
+// whose axis is `axis_z` (+1 or -1) along its z.
+std::string planarLinkUrdf(int axis_z) {
+  std::ostringstream xml;
+  xml << R"(<robot name="r"><link name="world"/>
+    <link name="l">
+      <collision><origin xyz="0.2 0 0"/><geometry><sphere radius="0.1"/></geometry></collision>
+      <collision><origin xyz="0.4 0 0"/><geometry><sphere radius="0.1"/></geometry></collision>
+      <collision><origin xyz="0.2 0.3 0"/><geometry><sphere radius="0.15"/></geometry></collision>
+    </link>
+    <joint name="slide" type="planar"><parent link="world"/><child link="l"/>
+      <origin xyz="1 2 0" rpy="0 0 0.5"/><axis xyz="0 0 )"
+      << axis_z << R"("/></joint></robot>)";
+  return xml.str();
+}
+
+// The spheres' centres of planarLinkUrdf at joint coordinates (x, y, theta), by its kinematics.
+std::vector<Eigen::Vector2d> planarLinkSpheres(const Eigen::Vector3d& joint, int axis_z) {
+  const Eigen::Isometry3d link = Eigen::Translation3d(1.0, 2.0, 0.0) *
+                                 Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()) *
+                                 Eigen::Translation3d(joint.x(), joint.y(), 0.0) *
+                                 Eigen::AngleAxisd(joint.z(), axis_z * Eigen::Vector3d::UnitZ());
+  std::vector<Eigen::Vector2d> centres;
+  for (const Eigen::Vector3d& local :
+       {Eigen::Vector3d(0.2, 0.0, 0.0), Eigen::Vector3d(0.4, 0.0, 0.0),
+        Eigen::Vector3d(0.2, 0.3, 0.0)}) {
+    centres.push_back((link * local).head<2>());
+  }
+  return centres;
+}
+
+}  // namespace
+
+TEST(UrdfScene, ALinkOfSpheresOnAPlanarJointTurnsAndMapsBackToItsJoint) {
+  for (const int axis_z : {1, -1}) {
+    const fesd::UrdfScene read = fesd::sceneFromUrdf(planarLinkUrdf(axis_z), true);
+    ASSERT_EQ(read.error, "");
+    ASSERT_EQ(read.scene.bodies().size(), 1u);
+    const fesd::SceneBody& body = read.scene.bodies()[0];
+    EXPECT_TRUE(body.turns);
+    EXPECT_EQ(body.yaw, 0.0);
+    ASSERT_EQ(body.spheres.size(), 3u);
+    EXPECT_EQ(body.spheres[2].name, "l/sphere_2");
+    EXPECT_GT(body.turning_radius, 0.0);
+    ASSERT_EQ(read.planar_joints.size(), 1u);
+    const fesd::UrdfPlanarJoint& joint = read.planar_joints[0];
+    EXPECT_EQ(joint.joint, "slide");
+    EXPECT_EQ(joint.body, 0);
+    EXPECT_EQ(joint.turn_sign, axis_z);
+    EXPECT_LT(fesd::planarJointValues(joint, body.position, 0.0).norm(), 1e-14);
+
+    // The body placed on the kinematics' spheres at some joint coordinates: every sphere where
+    // the URDF puts it, and the coordinates recovered from the body's position and yaw.
+    const Eigen::Vector3d coordinates(0.3, -0.2, 0.7);
+    const std::vector<Eigen::Vector2d> centres = planarLinkSpheres(coordinates, axis_z);
+    const double yaw = axis_z * coordinates.z();
+    const Eigen::Rotation2Dd turn(yaw);
+    const Eigen::Vector2d position = centres[0] - turn * body.spheres[0].offset.head<2>();
+    for (size_t k = 0; k < 3; ++k) {
+      EXPECT_LT((position + turn * body.spheres[k].offset.head<2>() - centres[k]).norm(), 1e-14)
+          << "sphere " << k << ", axis " << axis_z;
+    }
+    EXPECT_LT((fesd::planarJointValues(joint, position, yaw) - coordinates).norm(), 1e-14);
+  }
+}
+
+TEST(UrdfScene, SeveralSpheresOfAFixedLinkAreObstaclesAndOfAFloatingOneABodyThatTranslates) {
+  const std::string urdf = R"(<robot name="r"><link name="world"/>
+    <link name="rail">
+      <collision><origin xyz="0 0 0"/><geometry><sphere radius="0.1"/></geometry></collision>
+      <collision><origin xyz="1 0 0"/><geometry><sphere radius="0.2"/></geometry></collision>
+    </link>
+    <joint name="jr" type="fixed"><parent link="world"/><child link="rail"/></joint>
+    <link name="bar">
+      <collision><origin xyz="0 0 0"/><geometry><sphere radius="0.1"/></geometry></collision>
+      <collision><origin xyz="0 1 0"/><geometry><sphere radius="0.1"/></geometry></collision>
+    </link>
+    <joint name="jb" type="floating"><parent link="world"/><child link="bar"/>
+      <origin xyz="3 0 0"/></joint>
+  </robot>)";
+  const fesd::UrdfScene read = fesd::sceneFromUrdf(urdf, true);
+  ASSERT_EQ(read.error, "");
+  ASSERT_EQ(read.scene.obstacles().size(), 2u);
+  EXPECT_EQ(read.scene.obstacles()[1].name, "rail/sphere_1");
+  EXPECT_EQ(read.scene.obstacles()[1].radius, 0.2);
+  EXPECT_TRUE(read.scene.obstacles()[1].position.isApprox(Eigen::Vector2d(1.0, 0.0)));
+  ASSERT_EQ(read.scene.bodies().size(), 1u);
+  const fesd::SceneBody& bar = read.scene.bodies()[0];
+  EXPECT_FALSE(bar.turns);
+  EXPECT_TRUE(bar.position.isApprox(Eigen::Vector2d(3.0, 0.5)));
+  ASSERT_EQ(bar.spheres.size(), 2u);
+  EXPECT_TRUE(bar.spheres[1].offset.isApprox(Eigen::Vector3d(0.0, 0.5, 0.0)));
+  EXPECT_DOUBLE_EQ(bar.radius, 0.6);
+  EXPECT_TRUE(read.planar_joints.empty());  // a floating joint is answered by the body alone
+}
