@@ -10,6 +10,7 @@
 #include "fesd_trajopt/planning/paths_around.h"
 #include "fesd_trajopt/planning/planned_motion.h"
 #include "fesd_trajopt/planning/pusher_poses.h"
+#include "fesd_trajopt/planning/turning_push.h"
 #include "fesd_trajopt/scene/pair_check.h"
 
 namespace fesd {
@@ -231,6 +232,7 @@ Eigen::VectorXd endOffset(const PushLeg& leg, size_t k) {
 }
 
 PushPlan planPushes(const SceneTask& task, const std::vector<ContactPair>& pairs) {
+  if (std::optional<PushPlan> turning = planTurningPush(task, pairs)) return *std::move(turning);
   if (hasCompositeBodies(task.scene)) {
     const BoundingDiscPairs discs = boundingDiscPairs(task.scene, pairs);
     PushPlan plan = planPushes(boundingDiscTask(task), discs.pairs);

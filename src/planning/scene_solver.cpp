@@ -68,25 +68,27 @@ struct FirstGuess {
   int pusher_sphere = -1;
   std::vector<PushLeg> legs;  ///< of a push plan of free bodies
   std::vector<Transit> transits;
+  bool turns_bodies = false;  ///< PushPlan::turns_bodies
 };
 
 FirstGuess firstGuess(const SceneTask& task, const std::vector<ContactPair>& candidates,
                       const SceneSolveOptions& options) {
   if (task.scene.hasRobot()) {
     RobotGuess robot = planRobotGuess(task, candidates, options.ocp.discretization.num_elements);
-    return {std::move(robot.guess), {}, robot.pusher_sphere, {}, {}};
+    return {std::move(robot.guess), {}, robot.pusher_sphere, {}, {}, false};
   }
   PushPlan plan = planPushes(task, candidates);
-  return {std::move(plan.guess), std::move(plan.short_pushes), -1, std::move(plan.legs),
-          std::move(plan.transits)};
+  return {std::move(plan.guess), std::move(plan.short_pushes), -1,
+          std::move(plan.legs),  std::move(plan.transits),     plan.turns_bodies};
 }
 
 /// The first round's pairs, among the pairs in reach (the decisions' modelled ones): all of them
 /// without lazy pairs or with few in reach; for a warm start the previous solution's pairs when
 /// all of them are in reach (so that its NLP can be the same); else those the first guess calls
-/// for, and every pair of a body with a target yaw. The others in reach are to be checked.
+/// for, and every pair of a body with a target yaw unless the guess turns it. The others in
+/// reach are to be checked.
 void chooseFirstPairs(const SceneTask& task, const std::vector<ContactPair>& candidates,
-                      const TrajectoryGuess& guess, const SceneSolveOptions& options,
+                      const FirstGuess& first_guess, const SceneSolveOptions& options,
                       SceneOutcome& outcome) {
   if (!options.lazy_pairs || static_cast<int>(candidates.size()) <= options.all_pairs_up_to) {
     return;
@@ -101,16 +103,17 @@ void chooseFirstPairs(const SceneTask& task, const std::vector<ContactPair>& can
   }
   if (chosen.size() != candidates.size()) {
     const int samples = 16 * task.num_intervals;
-    const PairSelection selection = pairsTheGuessNeeds(task.scene, task.horizon, candidates, guess,
-                                                       options.first_round_margin, samples);
+    const PairSelection selection =
+        pairsTheGuessNeeds(task.scene, task.horizon, candidates, first_guess.guess,
+                           options.first_round_margin, samples);
     chosen = selection.modelled;
     reasons = selection.reasons;
-    // The push plan does not turn bodies: a body with a yaw target gets its pairs in reach
+    // A push plan that does not turn bodies: a body with a yaw target gets its pairs in reach
     // modelled from the first round, so that the NLP can find the pushes that turn it.
     const std::vector<CollisionBody> bodies = task.scene.collisionBodies();
     const auto must_turn = [&](int collision_body) {
       const int body = bodies[collision_body].free_body;
-      return body >= 0 && task.bodies[body].hasYawTarget();
+      return body >= 0 && task.bodies[body].hasYawTarget() && !first_guess.turns_bodies;
     };
     for (size_t c = 0; c < candidates.size(); ++c) {
       const ContactPair& pair = candidates[c];
@@ -390,7 +393,7 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     from_sigma = tightestRelaxation(refine->report, options.ocp.guess_sigma);
     for (const PairInterval& held : refine->held_grazes) addHeld(held, outcome.held_grazes);
   } else {
-    chooseFirstPairs(aimed, candidates, first_guess.guess, options, outcome);
+    chooseFirstPairs(aimed, candidates, first_guess, options, outcome);
   }
   if (options.previous != nullptr) {
     // A replan holds what the last plan held, so that its NLP can be the same.

@@ -84,6 +84,9 @@ struct PushPlan {
   };
   std::vector<ShortPush> short_pushes;
   TrajectoryGuess guess;  ///< of the task's full state; multipliers per pair of planPushes' list
+  /// The plan turns the bodies with a target yaw (planTurningPush): the pairs its guess touches
+  /// are those the first round needs; otherwise their yaw is left to the NLP.
+  bool turns_bodies = false;
 };
 
 /// Pushers: each actuated body pushes at most one passive body with a target, through a body

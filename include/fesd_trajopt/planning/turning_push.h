@@ -1,0 +1,46 @@
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "fesd_trajopt/planning/push_plan.h"
+#include "fesd_trajopt/scene/scene_task.h"
+
+namespace fesd {
+
+/// Where a pusher of radius r_P touches a turning body to push it along n (in the body's frame):
+/// behind sphere k, its centre at o_k - (r_k + r_P) n, reached from behind without touching the
+/// other spheres; the push turns the body at the path curvature lever / rho^2 (lever = o_k x n,
+/// counter-clockwise positive: the projection in the metric diag(1, 1, rho^2)).
+struct PushContact {
+  int sphere = -1;
+  Eigen::Vector2d pusher;  ///< the pusher's centre in the body's frame
+  double lever = 0.0;
+};
+
+/// The contacts from which a pusher of `pusher_radius` can push `body` along n (body frame).
+std::vector<PushContact> pushContacts(const SceneBody& body, double pusher_radius,
+                                      const Eigen::Vector2d& n);
+
+/// One pusher bringing one turning body to a pose. A push with its contact fixed on the body
+/// moves it along an arc (curvature lever / rho^2) whose tangent turns with the body, so a leg
+/// is a straight line, an arc and a straight line with its push direction fixed in the body's
+/// frame: on the straight pieces the pusher stands behind the sphere of least lever, on the arc
+/// behind the sphere whose lever turns the body at the arc's curvature, going round the spheres
+/// from one to the other. The plan is one such leg, or an arc alone and a straight push in
+/// either order (the pusher going round the body between them), whichever is cheapest over the
+/// start headings (every degree) and arc spheres: length, plus how far the straight pieces'
+/// lever would turn the body, plus the pusher's way between legs. The pusher gets to its first
+/// contact round the body's spheres; the phases take the horizon by least effort; the
+/// multipliers are those that move the body along the plan (least squares, >= 0).
+///
+/// Only for a planar scene of one actuated disc without a target and one turning body with a
+/// position and a yaw target, nothing else (no obstacles or walls, bounds the plan keeps), whose
+/// pusher-sphere pairs are all in `pairs`; otherwise, or when no plan of these shapes reaches the
+/// pose within the pusher's speed (a turn of nearly half a circle, a target too far): nothing.
+std::optional<PushPlan> planTurningPush(const SceneTask& task,
+                                        const std::vector<ContactPair>& pairs);
+
+}  // namespace fesd
