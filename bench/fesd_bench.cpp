@@ -40,8 +40,10 @@ const std::map<std::string, Command>& commands() {
        {fesd_bench::pushT,
         "Push-T (a T of 12 spheres that turns, one disc pusher, the benchmark's target pose)\n"
         "    from random starts through the node's default request: status, seconds, iterations,\n"
-        "    position and yaw errors, CSV and a summary against the default scene.\n"
-        "    --starts=16 --first-seed=0 --budget=60 --accuracy=1e-2"}},
+        "    position and yaw errors, CSV and a summary against the default scene; --trajectory\n"
+        "    writes one start's plan (--trajectory-seed, by default the first).\n"
+        "    --starts=16 --first-seed=0 --budget=60 --accuracy=1e-2 --trajectory=PATH\n"
+        "    --trajectory-seed=N"}},
       {"kkt",
        {fesd_bench::kkt,
         "The showcase plus --rocks passive discs in reach: NLP sizes, densest Jacobian rows and\n"

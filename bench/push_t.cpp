@@ -1,9 +1,11 @@
 // push-t: the Push-T benchmark in our units (examples/push_t.h) through the node's default
 // request: per random start the status, seconds (and their ratio to the default scene's in the
 // same run), iterations, the T's position and yaw errors and the verification error; CSV, then a
-// summary.
+// summary. --trajectory=PATH also writes one start's plan (--trajectory-seed, by default the
+// first; tools/plot_benchmarks.py draws it).
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "bench_args.h"
@@ -14,12 +16,46 @@
 #include "fesd_trajopt/solver/stopwatch.h"
 
 namespace fesd_bench {
+namespace {
+
+/// The plan of one start: the T's spheres (in its frame) and target as comments, then per
+/// element boundary the time, the pusher's position and the T's position and yaw.
+void writeTrajectory(const std::string& path, const fesd::SceneTask& task,
+                     const fesd::SceneOutcome& outcome) {
+  std::FILE* file = std::fopen(path.c_str(), "w");
+  if (!file) {
+    std::fprintf(stderr, "push-t: cannot write %s\n", path.c_str());
+    return;
+  }
+  const fesd::Scene& scene = task.scene;
+  std::fprintf(file, "# pusher_radius,%.17g\n", scene.bodies()[0].radius);
+  for (const fesd::FreeBodySphere& sphere : scene.bodies()[1].spheres) {
+    std::fprintf(file, "# sphere,%.17g,%.17g,%.17g\n", sphere.offset.x(), sphere.offset.y(),
+                 sphere.radius);
+  }
+  std::fprintf(file, "# target,%.17g,%.17g,%.17g\n", task.bodies[1].target.x(),
+               task.bodies[1].target.y(), task.bodies[1].target_yaw);
+  std::fprintf(file, "# status,%s\n", fesd::statusName(outcome.status).c_str());
+  std::fprintf(file, "t,pusher_x,pusher_y,t_x,t_y,yaw\n");
+  const fesd::Trajectory& trajectory = outcome.trajectory;
+  for (size_t i = 0; i < trajectory.states.size(); ++i) {
+    const Eigen::VectorXd& x = trajectory.states[i];
+    const Eigen::VectorXd pusher = scene.position(0, x), t = scene.position(1, x);
+    std::fprintf(file, "%.6f,%.9g,%.9g,%.9g,%.9g,%.9g\n", trajectory.times[i], pusher.x(),
+                 pusher.y(), t.x(), t.y(), scene.yaw(1, x));
+  }
+  std::fclose(file);
+}
+
+}  // namespace
 
 int pushT(const Arguments& args) {
   const int first_seed = args.integer("first-seed", 0);
   const int starts = args.integer("starts", 16);
   const fesd::SceneSolveOptions options = nodeDefaultOptions(args.number("budget", 60.0));
   const double accuracy = args.number("accuracy", 1e-2);
+  const std::string trajectory = args.text("trajectory", "");
+  const int trajectory_seed = args.integer("trajectory-seed", first_seed);
   args.rejectUnused();
   const double default_seconds = timeDefaultScene(options, accuracy);
   std::printf(
@@ -33,6 +69,7 @@ int pushT(const Arguments& args) {
     const fesd::SceneOutcome outcome =
         fesd::solveToAccuracy(task, fesd::TaskLimits{}, options, accuracy);
     const double seconds = stopwatch.wallSeconds();
+    if (!trajectory.empty() && seed == trajectory_seed) writeTrajectory(trajectory, task, outcome);
     walls.push_back(seconds);
     successes += outcome.status == fesd::SolveStatus::kSuccess;
     const Eigen::VectorXd end = outcome.trajectory.finalState();

@@ -3,20 +3,39 @@
 
 The Python usage example: an empty request solves the default scene; see --help for a few
 overrides. Usage: rosrun fesd_trajopt demo_client.py [--intervals N] [--elements N] [--verify]
-[--obstacle X Y R ...]
+[--obstacle X Y R ...] [--push-t X Y YAW PUSHER_X PUSHER_Y]
 """
 import argparse
+import math
 import sys
 
 import rospy
 from geometry_msgs.msg import Point
 
-from fesd_trajopt.msg import Obstacle, PlanRequest, Solution, SwitchEvent
+from fesd_trajopt.msg import BodySpec, Obstacle, PlanRequest, Solution, SwitchEvent
 from fesd_trajopt.srv import SolveTrajectory
 
 # Status code -> name, from Solution.msg's constants.
 STATUS = {getattr(Solution, name): name for name in dir(Solution)
           if name.isupper() and isinstance(getattr(Solution, name), int)}
+
+
+def push_t(request, x, y, yaw, pusher_x, pusher_y):
+    """Push-T (examples/push_t.h): a T of width 0.5 (a bar of 7 spheres over a stem of 5) at
+    (x, y, yaw) about its centre of pressure, one disc pusher, the target pose (0, 0, pi / 4)
+    taken at the yaw equivalent nearest the start; 10 s in 40 intervals."""
+    request.urdf = '<robot name="table"><link name="world"/></robot>'
+    offsets = [Point(x=0.25 * k) for k in range(-3, 4)] + [Point(y=-0.25 * k) for k in range(2, 7)]
+    target_yaw = yaw + math.remainder(math.pi / 4 - yaw, 2 * math.pi)
+    request.bodies = [
+        BodySpec(name="pusher", add=True, radius=0.25, initial_position=Point(x=pusher_x, y=pusher_y),
+                 role=BodySpec.ROLE_ACTUATED, max_speed=2.0),
+        BodySpec(name="t_block", add=True, turns=True, initial_position=Point(x=x, y=y),
+                 initial_yaw=yaw, sphere_offsets=offsets, sphere_radii=[0.25] * len(offsets),
+                 target=Point(), target_weight=100.0, target_yaw=target_yaw,
+                 target_yaw_weight=100.0)]
+    request.has_horizon, request.horizon = True, 10.0
+    request.has_num_intervals, request.num_intervals = True, 40
 
 
 def main():
@@ -27,6 +46,9 @@ def main():
     parser.add_argument("--verify", action="store_true", help="re-simulate on a finer grid")
     parser.add_argument("--obstacle", type=float, nargs=3, action="append", default=[],
                         metavar=("X", "Y", "R"), help="a fixed disc added to the scene")
+    parser.add_argument("--push-t", type=float, nargs=5,
+                        metavar=("X", "Y", "YAW", "PUSHER_X", "PUSHER_Y"),
+                        help="Push-T instead of the default scene: the T's start and the pusher's")
     args = parser.parse_args(rospy.myargv()[1:])
     rospy.init_node("fesd_trajopt_demo_client", anonymous=True)
     rospy.wait_for_service(args.service, timeout=60.0)
@@ -37,6 +59,8 @@ def main():
     if args.elements:
         request.has_num_elements, request.num_elements = True, args.elements
     request.verify = args.verify
+    if args.push_t:
+        push_t(request, *args.push_t)
     for k, (x, y, radius) in enumerate(args.obstacle):
         request.obstacles.append(Obstacle(name="post_%d" % k, radius=radius,
                                           position=Point(x=x, y=y)))
@@ -48,8 +72,9 @@ def main():
     print("  %s" % response.message)
     for body in solution.bodies:
         start, end = body.positions[0], body.positions[-1]
-        print("  %-12s %-8s (%7.3f, %7.3f) -> (%7.3f, %7.3f)" % (
-            body.name, "actuated" if body.actuated else "passive", start.x, start.y, end.x, end.y))
+        print("  %-12s %-8s (%7.3f, %7.3f) -> (%7.3f, %7.3f)%s" % (
+            body.name, "actuated" if body.actuated else "passive", start.x, start.y, end.x, end.y,
+            ", yaw %.3f -> %.3f" % (body.yaws[0], body.yaws[-1]) if body.yaws else ""))
     for event in solution.switches:
         kind = "contact" if event.kind == SwitchEvent.CONTACT else "release"
         print("  %-7s %s/%s at t = %.4f" % (kind, event.first, event.second, event.time))

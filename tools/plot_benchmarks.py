@@ -3,7 +3,8 @@
 
 Usage: plot_benchmarks.py [directory]. Reads what exists of order_pds.csv, siconos_example1.csv,
 ocp_accuracy.csv, scaling.csv, order_filippov.csv, ocp_filippov.csv, sensitivity_sweep.csv,
-sensitivity_order.csv and sweep_accuracy.csv; a missing file skips its plots.
+sensitivity_order.csv, sweep_accuracy.csv and push_t_trajectory.csv; a missing file skips its
+plots.
 """
 import csv
 import os
@@ -213,6 +214,66 @@ def plot_sensitivity(directory, sweep_rows, order_rows):
     save_with_grids(figure, axes, directory, "sensitivity.png")
 
 
+def read_push_t(directory):
+    """push_t_trajectory.csv (fesd_bench push-t --trajectory): its comment lines (the T's spheres,
+    the pusher's radius, the target) and its rows."""
+    path = os.path.join(directory, "push_t_trajectory.csv")
+    if not os.path.exists(path):
+        print("plot_benchmarks: no %s, its plot is skipped" % path)
+        return None
+    spheres, header, lines = [], {}, []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("# sphere,"):
+                spheres.append([float(v) for v in line.split(",")[1:]])
+            elif line.startswith("# "):
+                key, *values = line[2:].strip().split(",")
+                header[key] = values
+            else:
+                lines.append(line)
+    return spheres, header, list(csv.DictReader(lines))
+
+
+def plot_push_t(directory, spheres, header, rows):
+    """The T at a few times (lighter earlier), its target outlined, the pusher's path and discs."""
+    import math
+    from matplotlib.patches import Circle
+
+    figure, axis = plt.subplots(figsize=(6.5, 6.5))
+    pusher_radius = float(header["pusher_radius"][0])
+    target = [float(v) for v in header["target"]]
+
+    def draw_t(x, y, yaw, **style):
+        c, s = math.cos(yaw), math.sin(yaw)
+        for ox, oy, r in spheres:
+            axis.add_patch(Circle((x + c * ox - s * oy, y + s * ox + c * oy), r, **style))
+
+    draw_t(*target, fill=False, edgecolor="tab:red", linestyle="--", linewidth=0.8)
+    snapshots = 3
+    for k in range(snapshots + 1):
+        row = rows[round(k * (len(rows) - 1) / snapshots)]
+        shade = 0.3 + 0.7 * k / snapshots
+        draw_t(float(row["t_x"]), float(row["t_y"]), float(row["yaw"]),
+               facecolor=(0.12, 0.47, 0.71, 0.3 * shade), edgecolor="none")
+        axis.add_patch(Circle((float(row["pusher_x"]), float(row["pusher_y"])), pusher_radius,
+                              facecolor=(1.0, 0.5, 0.05, shade), edgecolor="none"))
+        axis.annotate("%.1f s" % float(row["t"]), (float(row["pusher_x"]), float(row["pusher_y"])),
+                      fontsize=7, xytext=(4, 4), textcoords="offset points")
+    axis.plot([float(r["pusher_x"]) for r in rows], [float(r["pusher_y"]) for r in rows],
+              color="tab:orange", linewidth=0.8, label="pusher")
+    axis.plot([float(r["t_x"]) for r in rows], [float(r["t_y"]) for r in rows],
+              color="tab:blue", linewidth=0.8, label="T (centre of pressure)")
+    axis.plot([], [], color="tab:red", linestyle="--", label="target pose")
+    axis.set_aspect("equal")
+    axis.autoscale_view()
+    axis.set_xlabel("x")
+    axis.set_ylabel("y")
+    axis.set_title("Push-T (%s): the T pushed to its pose" % header["status"][0], fontsize=10)
+    axis.grid(True, alpha=0.3)
+    axis.legend(fontsize=7, loc="best")
+    save(figure, directory, "push_t.png")
+
+
 def main():
     directory = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
         os.path.dirname(os.path.abspath(__file__)), "..", "docs", "benchmarks")
@@ -236,6 +297,9 @@ def main():
     sweep_rows = read(directory, "sweep_accuracy.csv")
     if sweep_rows:
         plot_sweep_accuracy(directory, sweep_rows)
+    push_t = read_push_t(directory)
+    if push_t:
+        plot_push_t(directory, *push_t)
     return 0
 
 

@@ -9,7 +9,7 @@ source_workspace
 OUT="$REPO_DIR/docs/benchmarks"
 mkdir -p "$OUT"
 PARTS=("$@")
-((${#PARTS[@]})) || PARTS=(order siconos ocp scaling filippov sensitivity sweep)
+((${#PARTS[@]})) || PARTS=(order siconos ocp scaling filippov sensitivity sweep push-t)
 for part in "${PARTS[@]}"; do
   echo "== $part"
   case "$part" in
@@ -46,7 +46,12 @@ for part in "${PARTS[@]}"; do
       rosrun fesd_trajopt fesd_bench sweep-accuracy --families=cluttered --scenes=4 |
         tail -n +2 >>"$OUT/sweep_accuracy.csv"
       ;;
-    *) echo "unknown part '$part' (order, siconos, ocp, scaling, filippov, sensitivity, sweep)" >&2
+    push-t)
+      OPENBLAS_NUM_THREADS=1 rosrun fesd_trajopt fesd_bench push-t --starts=16 --budget=40 \
+        --trajectory="$OUT/push_t_trajectory.csv" --trajectory-seed=2 >"$OUT/push_t.csv"
+      ;;
+    *) echo "unknown part '$part' (order, siconos, ocp, scaling, filippov, sensitivity, sweep," \
+      "push-t)" >&2
       exit 2 ;;
   esac
 done

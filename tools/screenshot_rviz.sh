@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Renders the demo (node + client + rviz) under Xvfb and saves a screenshot of rviz showing the
 # solved default scene: tools/screenshot_rviz.sh [output.png] [seconds after the solve] [launch]
-# [client arguments] (defaults docs/rviz_default_scene.png, 5, demo.launch, none;
-# robot_demo.launch shows the planar arm; e.g. "--obstacle 0 6 0.8" puts a post on the push line). The playback loops every 6 s (5 s of motion at
+# [client arguments] [rviz config] (defaults docs/rviz_default_scene.png, 5, demo.launch, none,
+# the launch's; robot_demo.launch shows the planar arm; e.g. "--obstacle 0 6 0.8" puts a post on
+# the push line; "--push-t -0.99 0.42 -2.98 2.03 -0.97" with config/push_t.rviz shows Push-T). The playback loops every 6 s (5 s of motion at
 # ~playback_rate 1, then 1 s pause): 8.5 s after the solve it shows t ~ 2.5 s, mid-push.
 # Needs a built workspace (tools/run_default.sh) and imagemagick for `import`.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
@@ -11,6 +12,7 @@ OUTPUT="${1:-$REPO_DIR/docs/rviz_default_scene.png}"
 DELAY="${2:-5}"
 LAUNCH_FILE="${3:-demo.launch}"
 CLIENT_ARGS="${4:-}"
+RVIZ_CONFIG="${5:-}"
 DISPLAY_NUMBER=":$((90 + RANDOM % 9))"
 
 Xvfb "$DISPLAY_NUMBER" -screen 0 1200x850x24 >/dev/null 2>&1 &
@@ -26,6 +28,7 @@ sleep 2
 
 LAUNCH_ARGS=()
 [ -n "$CLIENT_ARGS" ] && LAUNCH_ARGS+=("client_args:=$CLIENT_ARGS")
+[ -n "$RVIZ_CONFIG" ] && LAUNCH_ARGS+=("rviz_config:=$RVIZ_CONFIG")
 DISPLAY="$DISPLAY_NUMBER" roslaunch fesd_trajopt "$LAUNCH_FILE" "${LAUNCH_ARGS[@]}" >"$LOG" 2>&1 &
 LAUNCH_PID=$!
 # The client prints the round trip last; then give rviz a few frames to draw the markers.

@@ -357,6 +357,13 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
   auto body_color = [&](size_t b, double alpha) {
     return bodyColor(scene.bodies()[b].actuated, alpha);
   };
+  // Lines and labels drawn for discs of radius 0.75 and more shrink with smaller spheres.
+  double smallest = 0.75;
+  for (const fesd_trajopt::BodyTrajectory& body : solution.bodies) {
+    smallest = std::min(smallest, body.radius);
+    for (double radius : body.sphere_radii) smallest = std::min(smallest, radius);
+  }
+  const double detail = smallest / 0.75;
   // A body as its spheres at boundary k (or at `at`, turned by `yaw`), a turning one with an
   // arrow along its heading.
   auto body_at = [&](const std::string& ns, const fesd_trajopt::BodyTrajectory& body,
@@ -386,7 +393,7 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
     }
     visualization_msgs::Marker path = marker("paths", visualization_msgs::Marker::LINE_STRIP);
     path.points = body.positions;
-    path.scale.x = 0.08;
+    path.scale.x = 0.08 * detail;
     path.color = body_color(b, 1.0);
     markers.markers.push_back(path);
   }
@@ -414,11 +421,11 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
     label.pose.position.y = label_at.y / std::max(touching, 1);
     label.pose.position.z = label_at.z / std::max(touching, 1) + 0.5;
     // Simultaneous switches would print on top of each other: stack them downwards.
-    constexpr double kLineHeight = 0.8;
+    const double line_height = 0.8 * detail;
     for (const geometry_msgs::Point& placed : labels_placed) {
-      if (std::abs(placed.x - label.pose.position.x) < 4.0 &&
-          std::abs(placed.y - label.pose.position.y) < kLineHeight) {
-        label.pose.position.y = placed.y - kLineHeight;
+      if (std::abs(placed.x - label.pose.position.x) < 4.0 * detail &&
+          std::abs(placed.y - label.pose.position.y) < line_height) {
+        label.pose.position.y = placed.y - line_height;
       }
     }
     labels_placed.push_back(label.pose.position);
@@ -427,7 +434,7 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
                   event.kind == fesd_trajopt::SwitchEvent::CONTACT ? "contact" : "release",
                   event.first.c_str(), event.second.c_str(), event.time);
     label.text = text;
-    label.scale.z = 0.6;
+    label.scale.z = 0.6 * detail;
     label.color = color(0.1, 0.1, 0.1, 1.0);  // for the light background of the shipped view
     markers.markers.push_back(label);
   }
@@ -443,30 +450,30 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
       for (int k = 0; k <= kSamples; ++k) {
         line.points.push_back(point(path.at(path.length() * k / kSamples)));
       }
-      line.scale.x = 0.12;
+      line.scale.x = 0.12 * detail;
       line.color = color(0.9, 0.5, 0.1, 0.8);
       markers.markers.push_back(line);
       from = path.at(path.length() - std::min(path.length(), (leg.to - leg.through.back()).norm()));
     }
     visualization_msgs::Marker arrow = marker("plan_legs", visualization_msgs::Marker::ARROW);
     arrow.points = {point(from), point(leg.to)};
-    arrow.scale.x = 0.12;  // shaft and head diameters, head length
-    arrow.scale.y = 0.35;
-    arrow.scale.z = 0.4;
+    arrow.scale.x = 0.12 * detail;  // shaft and head diameters, head length
+    arrow.scale.y = 0.35 * detail;
+    arrow.scale.z = 0.4 * detail;
     arrow.color = color(0.9, 0.5, 0.1, 0.8);
     markers.markers.push_back(arrow);
   }
   for (const fesd::Transit& transit : transits) {
-    // Dashed: every other piece of the path cut into pieces of about 0.25.
+    // Dashed: every other piece of the path cut into pieces of about 0.25 (scaled).
     visualization_msgs::Marker dashes =
         marker("plan_transits", visualization_msgs::Marker::LINE_LIST);
     const double length = fesd::pathLength(transit.path);
-    const int pieces = 2 * std::max(1, static_cast<int>(length / 0.25));
+    const int pieces = 2 * std::max(1, static_cast<int>(length / (0.25 * detail)));
     for (int k = 0; k < pieces; k += 2) {
       dashes.points.push_back(point(fesd::pointAlong(transit.path, double(k) / pieces)));
       dashes.points.push_back(point(fesd::pointAlong(transit.path, double(k + 1) / pieces)));
     }
-    dashes.scale.x = 0.05;
+    dashes.scale.x = 0.05 * detail;
     dashes.color = bodyColor(true, 0.8);
     markers.markers.push_back(dashes);
   }
