@@ -13,11 +13,12 @@ namespace {
 
 /// Start headings tried (one per degree): a deterministic search, the same on every machine.
 constexpr int kHeadings = 360;
-/// Beyond this turn the corner of a straight-arc-straight path goes to infinity.
+/// Beyond this turn the straight pieces along an arc's tangents meet far away (half a turn:
+/// never).
 constexpr double kLargestTurn = 175.0 * M_PI / 180.0;
 /// Below this turn the push is one straight line (the NLP finds the rest).
 constexpr double kSmallestTurn = M_PI / 180.0;
-/// Contacts and clearances are judged to this fraction of the radii.
+/// Contacts are judged to this fraction of the radii; pushes shorter than it are dropped.
 constexpr double kTolerance = 1e-9;
 /// Ways round a body's spheres turn this much farther out than the pusher touches them.
 constexpr double kCornerRoom = 1.1;
@@ -25,6 +26,8 @@ constexpr double kCornerRoom = 1.1;
 constexpr double kContactGap = 1e-6;
 /// Velocities of the plan are differences over this fraction of the horizon.
 constexpr double kVelocityStep = 1e-7;
+/// Points an arc of the plan is drawn through.
+constexpr int kArcPoints = 16;
 /// Samples per control interval of its mean control.
 constexpr int kControlSamples = 8;
 
@@ -36,104 +39,80 @@ Eigen::Vector2d unit(double angle) {
   return {std::cos(angle), std::sin(angle)};
 }
 
-/// A body's path: `straight_before` along `heading`, an arc of `radius` turning by `turn`, then
-/// `straight_after`; its tangent turns with the arc only.
-struct TurningPath {
+/// One push of a plan: the body from `from` at `yaw` along `heading`, straight for `length` or,
+/// with a radius, along an arc turning by `turn` (its tangent and the body turning together), the
+/// pusher behind `contact` all along.
+struct Leg {
   Eigen::Vector2d from;
-  double heading = 0.0, straight_before = 0.0, radius = 0.0, turn = 0.0, straight_after = 0.0;
+  double yaw = 0.0, heading = 0.0, length = 0.0, radius = 0.0, turn = 0.0;
+  PushContact contact;
 
-  double arc() const { return radius * std::fabs(turn); }
-  double length() const { return straight_before + arc() + straight_after; }
-  /// How far the tangent has turned at arc length l.
+  double pathLength() const { return radius > 0.0 ? radius * std::fabs(turn) : length; }
+  /// How far the body has turned at arc length l.
   double turned(double l) const {
-    if (radius == 0.0) return 0.0;
-    return std::copysign(std::clamp(l - straight_before, 0.0, arc()) / radius, turn);
+    return radius > 0.0 ? std::copysign(std::clamp(l, 0.0, pathLength()) / radius, turn) : 0.0;
   }
   Eigen::Vector2d at(double l) const {
-    const Eigen::Vector2d enter = from + std::min(l, straight_before) * unit(heading);
-    if (l <= straight_before || radius == 0.0) return enter;
+    if (radius == 0.0) return from + std::clamp(l, 0.0, length) * unit(heading);
     const Eigen::Vector2d centre =
-        enter +
-        std::copysign(radius, turn) * Eigen::Vector2d(-std::sin(heading), std::cos(heading));
-    const Eigen::Vector2d exit = centre + Eigen::Rotation2Dd(turned(l)) * (enter - centre);
-    return exit + std::max(0.0, l - straight_before - arc()) * unit(heading + turn);
+        from + std::copysign(radius, turn) * Eigen::Vector2d(-std::sin(heading), std::cos(heading));
+    return centre + Eigen::Rotation2Dd(turned(l)) * (from - centre);
+  }
+  Eigen::Vector2d end() const { return at(pathLength()); }
+  Eigen::Vector2d pusherAt(double l) const {
+    return at(l) + Eigen::Rotation2Dd(yaw + turned(l)) * contact.pusher;
   }
 };
 
-/// One push of a plan: the body's path from its pose, the contacts on its straight pieces and on
-/// its arc.
-struct Leg {
-  TurningPath path;
-  double yaw = 0.0;  ///< the body's at the start
-  PushContact straight, turn;
-};
-
-/// A plan's pushes, in order (the pusher goes round the body between them), and its cost: their
-/// length, how far the straight pieces' lever would turn the body (as a length: rho times the
-/// angle) and, between pushes, the pusher's way from one contact to the next.
+/// A plan's pushes, in order (the pusher going round the body at rest between them), and its
+/// cost: their length, how far the straight pushes' lever would turn the body (as a length: rho
+/// times the angle), and the pusher's way from each contact to the next.
 struct Layout {
   std::vector<Leg> legs;
   double cost = std::numeric_limits<double>::infinity();
 };
 
-/// The contact of least |lever| (the first of equals), or none.
-std::optional<PushContact> straightContact(const std::vector<PushContact>& contacts) {
-  std::optional<PushContact> best;
-  for (const PushContact& c : contacts) {
-    if (!best || std::fabs(c.lever) < std::fabs(best->lever)) best = c;
-  }
-  return best;
-}
-
 Eigen::Vector2d pushDirection(double yaw, double heading) {
   return Eigen::Rotation2Dd(-yaw) * unit(heading);
 }
 
-/// A straight push from `from` to `to` at `yaw`, or none (no contact pushes that way).
+/// A straight push from `from` to `to` at `yaw` behind the contact of least |lever| (the first of
+/// equals), or none (no contact pushes that way).
 std::optional<Leg> straightLeg(const SceneBody& body, double pusher_radius,
                                const Eigen::Vector2d& from, const Eigen::Vector2d& to, double yaw) {
   const Eigen::Vector2d shift = to - from;
   const double heading = std::atan2(shift.y(), shift.x());
-  const std::optional<PushContact> contact =
-      straightContact(pushContacts(body, pusher_radius, pushDirection(yaw, heading)));
-  if (!contact) return std::nullopt;
-  return Leg{{from, heading, shift.norm(), 0.0, 0.0, 0.0}, yaw, *contact, *contact};
+  std::optional<PushContact> best;
+  for (const PushContact& c : pushContacts(body, pusher_radius, pushDirection(yaw, heading))) {
+    if (!best || std::fabs(c.lever) < std::fabs(best->lever)) best = c;
+  }
+  if (!best) return std::nullopt;
+  return Leg{from, yaw, heading, shift.norm(), 0.0, 0.0, *best};
 }
 
-double legCost(const Leg& leg, double rho) {
-  const double straight = leg.path.straight_before + leg.path.straight_after;
-  return leg.path.length() + straight * std::fabs(leg.straight.lever) / rho;
-}
-
-/// The pusher's place in the world at a leg's start or end.
-Eigen::Vector2d contactAt(const Leg& leg, bool at_end) {
-  const double l = at_end ? leg.path.length() : 0.0;
-  const PushContact& contact = leg.path.radius > 0.0 && (at_end ? leg.path.straight_after == 0.0
-                                                                : leg.path.straight_before == 0.0)
-                                   ? leg.turn
-                                   : leg.straight;
-  return leg.path.at(l) + Eigen::Rotation2Dd(leg.yaw + leg.path.turned(l)) * contact.pusher;
-}
-
-/// Keeps the cheaper of `best` and `legs` (a detour between two legs costs the pusher's way
-/// from one contact to the next, straight, taken twice for the way round the body).
+/// Keeps the cheaper of `best` and `legs` (those of any length; a detour between two legs costs
+/// the pusher's way from one contact to the next, straight, taken twice for the way round).
 void keepCheaper(std::vector<Leg> legs, double rho, Layout& best) {
   legs.erase(std::remove_if(legs.begin(), legs.end(),
-                            [](const Leg& leg) { return leg.path.length() < kTolerance; }),
+                            [](const Leg& leg) { return leg.pathLength() < kTolerance; }),
              legs.end());
   if (legs.empty()) return;
   double cost = 0.0;
   for (size_t k = 0; k < legs.size(); ++k) {
-    cost += legCost(legs[k], rho);
-    if (k > 0) cost += 2.0 * (contactAt(legs[k], false) - contactAt(legs[k - 1], true)).norm();
+    const Leg& leg = legs[k];
+    cost += leg.pathLength();
+    if (leg.radius == 0.0) cost += leg.length * std::fabs(leg.contact.lever) / rho;
+    if (k > 0) {
+      cost += 2.0 * (leg.pusherAt(0.0) - legs[k - 1].pusherAt(legs[k - 1].pathLength())).norm();
+    }
   }
   if (cost < best.cost) best = {std::move(legs), cost};
 }
 
-/// The cheapest plan from `from` at `yaw` by `shift`, turning by `turn`: one push along a
-/// straight line, an arc and a straight line (its push direction fixed in the body's frame), or
-/// a push along an arc alone and a straight push, in either order; over every start heading
-/// and arc contact.
+/// The cheapest plan from `from` at `yaw` by `shift`, turning by `turn`, of a push along an arc
+/// (the contact's lever setting its curvature) between two straight pushes along the arc's
+/// tangents, either of them or both of no length, or an arc and a straight push to the target in
+/// either order; over every start heading and arc contact.
 Layout bestLayout(const SceneBody& body, double pusher_radius, const Eigen::Vector2d& from,
                   double yaw, const Eigen::Vector2d& shift, double turn) {
   const double rho = body.turning_radius;
@@ -149,121 +128,74 @@ Layout bestLayout(const SceneBody& body, double pusher_radius, const Eigen::Vect
   pieces << 1.0, std::cos(turn), 0.0, std::sin(turn);
   for (int i = 0; i < kHeadings; ++i) {
     const double heading = 2.0 * M_PI * i / kHeadings - M_PI;
-    const std::vector<PushContact> contacts =
-        pushContacts(body, pusher_radius, pushDirection(yaw, heading));
-    const std::optional<PushContact> straight = straightContact(contacts);
-    if (!straight) continue;
     // In the frame of the heading: shift = a e1 + chord u(turn / 2) + b u(turn).
     const Eigen::Vector2d local = Eigen::Rotation2Dd(-heading) * shift;
-    for (const PushContact& contact : contacts) {
+    for (const PushContact& contact :
+         pushContacts(body, pusher_radius, pushDirection(yaw, heading))) {
       if (contact.lever * turn <= 0.0) continue;
       const double radius = rho * rho / std::fabs(contact.lever);
       const double chord = 2.0 * radius * std::sin(0.5 * std::fabs(turn));
+      const auto arc = [&](const Eigen::Vector2d& start) {
+        return Leg{start, yaw, heading, 0.0, radius, turn, contact};
+      };
       const Eigen::Vector2d straights = pieces.inverse() * (local - chord * unit(0.5 * turn));
       if (straights.minCoeff() >= 0.0) {
-        keepCheaper(
-            {{{from, heading, straights(0), radius, turn, straights(1)}, yaw, *straight, contact}},
-            rho, best);
+        const Eigen::Vector2d enter = from + straights(0) * unit(heading);
+        const Leg turning = arc(enter);
+        const std::optional<Leg> before = straightLeg(body, pusher_radius, from, enter, yaw);
+        const std::optional<Leg> after =
+            straightLeg(body, pusher_radius, turning.end(), to, yaw + turn);
+        if ((before || straights(0) == 0.0) && (after || straights(1) == 0.0)) {
+          std::vector<Leg> legs;
+          if (before) legs.push_back(*before);
+          legs.push_back(turning);
+          if (after) legs.push_back(*after);
+          keepCheaper(legs, rho, best);
+        }
       }
-      // The turn last, into the target (its push direction at the start's yaw, as this one's).
+      // The turn last, into the target, after a straight push to where it starts.
       const Eigen::Vector2d into = to - chord * unit(heading + 0.5 * turn);
       if (std::optional<Leg> first = straightLeg(body, pusher_radius, from, into, yaw)) {
-        keepCheaper({*first, {{into, heading, 0.0, radius, turn, 0.0}, yaw, contact, contact}}, rho,
-                    best);
+        keepCheaper({*first, arc(into)}, rho, best);
       }
-      // The turn first, from the start, then straight to the target.
-      const Leg turn_first{{from, heading, 0.0, radius, turn, 0.0}, yaw, contact, contact};
-      if (std::optional<Leg> then = straightLeg(
-              body, pusher_radius, turn_first.path.at(turn_first.path.length()), to, yaw + turn)) {
-        keepCheaper({turn_first, *then}, rho, best);
+      // The turn first, then a straight push to the target.
+      if (std::optional<Leg> then =
+              straightLeg(body, pusher_radius, arc(from).end(), to, yaw + turn)) {
+        keepCheaper({arc(from), *then}, rho, best);
       }
     }
   }
   return best;
 }
 
-/// The pusher's way in the body's frame from one contact to another, round the spheres.
-class ContactChange {
- public:
-  ContactChange(const SceneBody& body, double pusher_radius, const Eigen::Vector2d& from,
-                const Eigen::Vector2d& to) {
-    PathQuery query{from, to, {}, {}, 0.0, {}, {}};
-    for (const FreeBodySphere& sphere : body.spheres) {
-      const double distance = sphere.radius + pusher_radius;
-      query.keep_out.push_back({sphere.offset.head<2>(), distance, kCornerRoom * distance});
-    }
-    for (const Eigen::Vector2d& point : pathAround(query)) way_.push_back(point);
-  }
-  double length() const { return pathLength(way_); }
-  Eigen::Vector2d at(double s) const { return pointAlong(way_, s); }
-
- private:
-  std::vector<Eigen::VectorXd> way_;
-};
-
-/// Where the pusher sits in the body's frame at arc length l of a leg: behind the straight
-/// contact, the turning one on the arc, changing over a window at each end of the arc.
-class PusherPlacement {
- public:
-  PusherPlacement(const SceneBody& body, double pusher_radius, const Leg& leg)
-      : path_(leg.path),
-        straight_(leg.straight.pusher),
-        turning_(leg.turn.pusher),
-        in_(body, pusher_radius, straight_, turning_),
-        out_(body, pusher_radius, turning_, straight_) {
-    // About as long as the pusher's way between the contacts: it moves twice as fast as the body.
-    const double arc = path_.arc();
-    window_in_ = std::min({0.5 * path_.straight_before, 0.25 * arc, 0.5 * in_.length()});
-    window_out_ = std::min({0.5 * path_.straight_after, 0.25 * arc, 0.5 * out_.length()});
-  }
-
-  Eigen::Vector2d at(double l) const {
-    if (path_.radius == 0.0) return straight_;
-    const double enter = path_.straight_before, leave = enter + path_.arc();
-    if (l < enter - window_in_) return straight_;
-    if (l < enter + window_in_) return in_.at((l - enter + window_in_) / (2.0 * window_in_));
-    if (l <= leave - window_out_) return turning_;
-    if (l < leave + window_out_) return out_.at((l - leave + window_out_) / (2.0 * window_out_));
-    return straight_;
-  }
-
- private:
-  TurningPath path_;
-  Eigen::Vector2d straight_, turning_;
-  ContactChange in_, out_;
-  double window_in_ = 0.0, window_out_ = 0.0;
-};
-
-/// The plan's motion: the pusher's way to each leg's first contact round the body at rest
-/// (transits[k] before legs[k]), then the leg; phase k's transit ends at transit_ends[k], its
-/// leg at leg_ends[k] (the last at the horizon).
+/// The plan's motion: the pusher's way to each leg's contact round the body at rest
+/// (transits[k] before legs[k], ending at transit_ends[k]), then the leg (ending at
+/// leg_ends[k], the last at the horizon).
 struct TurningMotion {
   std::vector<Leg> legs;
-  std::vector<PusherPlacement> placements;
   std::vector<std::vector<Eigen::VectorXd>> transits;
   std::vector<double> transit_ends, leg_ends;
   int pusher = 0, pushed = 1;
   double rho = 1.0;
 
-  /// The scene's state at t, from `initial`.
+  /// The scene's state at t, from `x` (the initial state).
   Eigen::VectorXd state(const Scene& scene, Eigen::VectorXd x, double t) const {
     const int p = scene.stateIndex(pusher), b = scene.stateIndex(pushed);
     double begin = 0.0;
     for (size_t k = 0; k < legs.size(); ++k) {
-      const TurningPath& path = legs[k].path;
-      x.segment(b, 2) = path.from;
-      x(b + 2) = rho * legs[k].yaw;
+      const Leg& leg = legs[k];
+      x.segment(b, 2) = leg.from;
+      x(b + 2) = rho * leg.yaw;
       if (t < transit_ends[k]) {
         const double span = transit_ends[k] - begin;
         x.segment(p, 2) = pointAlong(transits[k], span > 0.0 ? (t - begin) / span : 1.0);
         return x;
       }
       const double l =
-          path.length() * std::min(1.0, (t - transit_ends[k]) / (leg_ends[k] - transit_ends[k]));
-      const double yaw = legs[k].yaw + path.turned(l);
-      x.segment(b, 2) = path.at(l);
-      x(b + 2) = rho * yaw;
-      x.segment(p, 2) = path.at(l) + Eigen::Rotation2Dd(yaw) * placements[k].at(l);
+          leg.pathLength() * std::min(1.0, (t - transit_ends[k]) / (leg_ends[k] - transit_ends[k]));
+      x.segment(b, 2) = leg.at(l);
+      x(b + 2) = rho * (leg.yaw + leg.turned(l));
+      x.segment(p, 2) = leg.pusherAt(l);
       if (t < leg_ends[k] || k + 1 == legs.size()) return x;
       begin = leg_ends[k];
     }
@@ -353,21 +285,19 @@ std::optional<PushPlan> planTurningPush(const SceneTask& task,
   double effort = 0.0;
   Eigen::Vector2d at = scene.bodies()[pusher].position.head<2>();
   for (const Leg& leg : layout.legs) {
-    motion.placements.emplace_back(body, pusher_radius, leg);
-    PathQuery query{at, contactAt(leg, false), {}, {}, 0.0, {}, {}};
+    PathQuery query{at, leg.pusherAt(0.0), {}, {}, 0.0, {}, {}};
     for (const FreeBodySphere& sphere : body.spheres) {
       const double distance = sphere.radius + pusher_radius;
-      query.keep_out.push_back(
-          {leg.path.from + Eigen::Rotation2Dd(leg.yaw) * sphere.offset.head<2>(), distance,
-           kCornerRoom * distance});
+      query.keep_out.push_back({leg.from + Eigen::Rotation2Dd(leg.yaw) * sphere.offset.head<2>(),
+                                distance, kCornerRoom * distance});
     }
     motion.transits.emplace_back();
     for (const Eigen::Vector2d& point : pathAround(query)) {
       if (!withinBounds(task.bodies[pusher], point)) return std::nullopt;
       motion.transits.back().push_back(point);
     }
-    effort += pathLength(motion.transits.back()) + 2.0 * leg.path.length();
-    at = contactAt(leg, true);
+    effort += pathLength(motion.transits.back()) + 2.0 * leg.pathLength();
+    at = leg.pusherAt(leg.pathLength());
   }
   const double horizon = task.horizon;
   // Too far for the pusher's speed: the disc plan pushes as far as time allows.
@@ -376,7 +306,7 @@ std::optional<PushPlan> planTurningPush(const SceneTask& task,
   for (size_t k = 0; k < layout.legs.size(); ++k) {
     time += horizon * pathLength(motion.transits[k]) / effort;
     motion.transit_ends.push_back(time);
-    time += horizon * 2.0 * layout.legs[k].path.length() / effort;
+    time += horizon * 2.0 * layout.legs[k].pathLength() / effort;
     motion.leg_ends.push_back(k + 1 == layout.legs.size() ? horizon : time);
   }
   const Eigen::VectorXd initial = scene.initialState();
@@ -423,18 +353,16 @@ std::optional<PushPlan> planTurningPush(const SceneTask& task,
   plan.release_time = horizon;
   for (size_t k = 0; k < layout.legs.size(); ++k) {
     const Leg& leg = layout.legs[k];
-    const TurningPath& path = leg.path;
-    const Eigen::Vector2d end = path.at(path.length());
     plan.transits.push_back({pusher, k == 0 ? 0.0 : motion.leg_ends[k - 1], motion.transit_ends[k],
                              motion.transits[k]});
-    const PushAssignment push{pusher, pushed, Eigen::VectorXd(contactAt(leg, false) - path.from)};
+    const PushAssignment push{pusher, pushed, Eigen::VectorXd(leg.pusherAt(0.0) - leg.from)};
     if (k == 0) plan.pushes.push_back(push);
-    PushLeg drawn{pushed, path.from, end, motion.transit_ends[k], motion.leg_ends[k],
-                  {push}, {},        0.0};
-    if (path.radius > 0.0) {  // the corner where its straight pieces (or arc's tangents) meet
-      const double reach = path.straight_before + path.radius * std::tan(0.5 * std::fabs(turn));
-      drawn.through.push_back(Eigen::VectorXd(path.from + reach * unit(path.heading)));
-      drawn.turn_radius = path.radius;
+    PushLeg drawn{pushed, leg.from, leg.end(), motion.transit_ends[k], motion.leg_ends[k],
+                  {push}, {},       0.0};
+    if (leg.radius > 0.0) {  // the arc drawn through points along it
+      for (int m = 1; m < kArcPoints; ++m) {
+        drawn.through.push_back(Eigen::VectorXd(leg.at(leg.pathLength() * m / kArcPoints)));
+      }
     }
     plan.legs.push_back(drawn);
   }

@@ -25,16 +25,16 @@ std::vector<PushContact> pushContacts(const SceneBody& body, double pusher_radiu
                                       const Eigen::Vector2d& n);
 
 /// One pusher bringing one turning body to a pose. A push with its contact fixed on the body
-/// moves it along an arc (curvature lever / rho^2) whose tangent turns with the body, so a leg
-/// is a straight line, an arc and a straight line with its push direction fixed in the body's
-/// frame: on the straight pieces the pusher stands behind the sphere of least lever, on the arc
-/// behind the sphere whose lever turns the body at the arc's curvature, going round the spheres
-/// from one to the other. The plan is one such leg, or an arc alone and a straight push in
-/// either order (the pusher going round the body between them), whichever is cheapest over the
-/// start headings (every degree) and arc spheres: length, plus how far the straight pieces'
-/// lever would turn the body, plus the pusher's way between legs. The pusher gets to its first
-/// contact round the body's spheres; the phases take the horizon by least effort; the
-/// multipliers are those that move the body along the plan (least squares, >= 0).
+/// moves it along an arc (curvature lever / rho^2) whose tangent turns with the body: the push
+/// direction stays fixed in the body's frame. The plan is a push along such an arc behind the
+/// sphere whose lever gives its curvature, between straight pushes along the arc's tangents
+/// (either or both of no length), or an arc and a straight push to the target in either order;
+/// a straight push stands behind the sphere of least lever. Between pushes the body rests while
+/// the pusher goes round its spheres to the next contact. The cheapest over the start headings
+/// (every degree) and arc spheres wins: length, plus how far the straight pushes' lever would
+/// turn the body, plus the pusher's ways between pushes. The pusher gets to its first contact
+/// round the body's spheres; the phases take the horizon by least effort; the multipliers are
+/// those that move the body along the plan (least squares, >= 0).
 ///
 /// Only for a planar scene of one actuated disc without a target and one turning body with a
 /// position and a yaw target, nothing else (no obstacles or walls, bounds the plan keeps), whose
