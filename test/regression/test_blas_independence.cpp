@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "fesd_trajopt/examples/manipulation_example.h"
+#include "fesd_trajopt/examples/push_t.h"
 #include "fesd_trajopt/planning/accuracy_ladder.h"
 #include "fesd_trajopt/planning/closed_loop.h"
 #include "fesd_trajopt/planning/scene_solver.h"
@@ -130,6 +131,13 @@ std::uint64_t probeDigest() {
   digest.add(box.trajectory);
   digest.add(box.report.iterations);
   digest.add(box.verification.error);
+  // Push-T from a start the turning push plan brings into one round.
+  const fesd::SceneOutcome push_t =
+      fesd::solveSceneTask(fesd::push_t::randomStart(0), fesd::TaskLimits{}, turning);
+  EXPECT_EQ(push_t.status, fesd::SolveStatus::kSuccess) << push_t.message;
+  digest.add(push_t.trajectory);
+  digest.add(push_t.report.iterations);
+  digest.add(push_t.verification.error);
   return digest.value();
 }
 
