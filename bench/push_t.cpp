@@ -57,6 +57,12 @@ int pushT(const Arguments& args) {
   const std::string trajectory = args.text("trajectory", "");
   const int trajectory_seed = args.integer("trajectory-seed", first_seed);
   args.rejectUnused();
+  if (!trajectory.empty() &&
+      (trajectory_seed < first_seed || trajectory_seed >= first_seed + starts)) {
+    std::fprintf(stderr, "push-t: --trajectory-seed=%d is not among the starts %d..%d\n",
+                 trajectory_seed, first_seed, first_seed + starts - 1);
+    return 2;
+  }
   const double default_seconds = timeDefaultScene(options, accuracy);
   std::printf(
       "seed,status,wall_s,ratio,ipopt_iterations,start_yaw_deg,turn_deg,position_error,"

@@ -54,13 +54,13 @@ def main():
     rospy.wait_for_service(args.service, timeout=60.0)
     solve = rospy.ServiceProxy(args.service, SolveTrajectory)
     request = PlanRequest()
+    if args.push_t:
+        push_t(request, *args.push_t)
     if args.intervals:
         request.has_num_intervals, request.num_intervals = True, args.intervals
     if args.elements:
         request.has_num_elements, request.num_elements = True, args.elements
     request.verify = args.verify
-    if args.push_t:
-        push_t(request, *args.push_t)
     for k, (x, y, radius) in enumerate(args.obstacle):
         request.obstacles.append(Obstacle(name="post_%d" % k, radius=radius,
                                           position=Point(x=x, y=y)))

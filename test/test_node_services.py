@@ -594,10 +594,12 @@ class NodeServices(unittest.TestCase):
         x, y, theta = response.solution.joint_trajectory.points[0].positions
         self.assertAlmostEqual(x, 0.5, delta=1e-12)  # the joint's x is the world's y
         self.assertAlmostEqual(theta, 0.1, delta=1e-15)
-        request.bodies[-1] = body("bar", radius=0.3)
-        response = self.simulate(request)
-        self.assertEqual(response.status, INVALID_REQUEST, response.message)
-        self.assertIn("collision spheres in the URDF", response.message)
+        for spec, words in ((body("bar", radius=0.3), "collision spheres in the URDF"),
+                            (body("bar", initial_yaw=0.3), "override_initial_position")):
+            request.bodies[-1] = spec
+            response = self.simulate(request)
+            self.assertEqual(response.status, INVALID_REQUEST, response.message)
+            self.assertIn(words, response.message)
 
     def test_hostile_turning_bodies_are_refused_and_the_node_keeps_serving(self):
         def bar(**fields):

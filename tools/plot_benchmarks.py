@@ -298,7 +298,7 @@ def main():
     if sweep_rows:
         plot_sweep_accuracy(directory, sweep_rows)
     push_t = read_push_t(directory)
-    if push_t:
+    if push_t and push_t[2]:
         plot_push_t(directory, *push_t)
     return 0
 

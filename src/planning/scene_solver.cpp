@@ -19,6 +19,10 @@
 namespace fesd {
 namespace {
 
+/// A lazy-pair round resumes its homotopy no tighter than this: its new pairs may have been cut
+/// into, which a nearly complementary start is slow to mend.
+constexpr double kTightestResumedRelaxation = 1e-4;
+
 /// Validation, infeasibility and the pair decisions: what both entry points do before solving.
 /// False when the task is not to be solved.
 bool prepare(const SceneTask& task, const TaskLimits& limits, bool check_goals,
@@ -416,13 +420,15 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
         std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
     if (pairs_added && !task.scene.hasRobot()) {
       // The previous round's solution is nearly this round's (the new pairs start separated):
-      // its homotopy resumes at the tightest relaxation that round reached, not from guess_sigma.
+      // its homotopy resumes at the tightest relaxation that round reached, not from guess_sigma,
+      // but no tighter than 1e-4 (Push-T resuming at 1e-7 took 371 iterations, at 1e-4 168).
       // Same optima on the planning sweep, in less time; a robot's lazy round starts over: on
       // the arm push resuming ended in another local optimum (objective 2.0e-4 against 1.4e-4).
       // Polishing the round before's active set first cost 100 iterations more on 4 of the 16
       // posts scenes at the node's grid and converged on none: the new pairs are the ones it
       // passed too near.
-      ocp_options.guess_sigma = tightestRelaxation(outcome.report, ocp_options.guess_sigma);
+      ocp_options.guess_sigma = std::max(
+          kTightestResumedRelaxation, tightestRelaxation(outcome.report, ocp_options.guess_sigma));
     }
     OcpSolver solver(ocp, ocp_options);
     solver.setMonitor(options.monitor);

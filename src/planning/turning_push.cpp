@@ -18,12 +18,11 @@ constexpr int kHeadings = 360;
 constexpr double kLargestTurn = 175.0 * M_PI / 180.0;
 /// Below this turn the push is one straight line (the NLP finds the rest).
 constexpr double kSmallestTurn = M_PI / 180.0;
-/// Contacts are judged to this fraction of the radii; pushes shorter than it are dropped.
+/// Contacts are judged to this fraction of the radii; pushes shorter than it times the turning
+/// radius are dropped (the plan then ends within that of the target).
 constexpr double kTolerance = 1e-9;
 /// Ways round a body's spheres turn this much farther out than the pusher touches them.
 constexpr double kCornerRoom = 1.1;
-/// A pair is in contact in the plan while its gap is at most this fraction of its size.
-constexpr double kContactGap = 1e-6;
 /// Velocities of the plan are differences over this fraction of the horizon.
 constexpr double kVelocityStep = 1e-7;
 /// Points an arc of the plan is drawn through.
@@ -38,6 +37,65 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 Eigen::Vector2d unit(double angle) {
   return {std::cos(angle), std::sin(angle)};
 }
+
+/// The contact behind sphere k along n (body frame), or none when the pusher coming along -n
+/// would meet another sphere first.
+std::optional<PushContact> contactBehind(const SceneBody& body, double pusher_radius, int k,
+                                         const Eigen::Vector2d& n) {
+  const Eigen::Vector2d centre = body.spheres[k].offset.head<2>();
+  const Eigen::Vector2d q = centre - (body.spheres[k].radius + pusher_radius) * n;
+  for (int j = 0; j < static_cast<int>(body.spheres.size()); ++j) {
+    if (j == k) continue;
+    // The pusher comes along -n towards q: its nearest approach to sphere j on that ray.
+    const Eigen::Vector2d w = body.spheres[j].offset.head<2>() - q;
+    const double behind = std::max(0.0, -w.dot(n));
+    if ((w + behind * n).norm() < (body.spheres[j].radius + pusher_radius) * (1.0 - kTolerance)) {
+      return std::nullopt;
+    }
+  }
+  return PushContact{k, q, cross(centre, n)};
+}
+
+/// The contacts for every degree of push direction in the body's frame, found once (each is
+/// quadratic in the spheres).
+class ContactTable {
+ public:
+  ContactTable(const SceneBody& body, double pusher_radius)
+      : body_(body), pusher_radius_(pusher_radius) {
+    for (int i = 0; i < kHeadings; ++i) {
+      contacts_.push_back(pushContacts(body, pusher_radius, direction(i)));
+    }
+  }
+  static Eigen::Vector2d direction(int i) { return unit(2.0 * M_PI * i / kHeadings - M_PI); }
+  const std::vector<PushContact>& at(int i) const { return contacts_[i]; }
+
+  /// The reachable contact of least |lever| (the first of equals) along n, or none: the spheres
+  /// reachable at the nearest degree tried first, in order of lever, each checked along n.
+  std::optional<PushContact> leastLever(const Eigen::Vector2d& n) const {
+    const double turns = (std::atan2(n.y(), n.x()) + M_PI) / (2.0 * M_PI);
+    const int i = static_cast<int>(std::lround(turns * kHeadings)) % kHeadings;
+    std::vector<int> spheres;
+    for (const PushContact& c : contacts_[i]) spheres.push_back(c.sphere);
+    const auto lever = [&](int k) {
+      return std::fabs(cross(body_.spheres[k].offset.head<2>(), n));
+    };
+    std::stable_sort(spheres.begin(), spheres.end(),
+                     [&](int a, int b) { return lever(a) < lever(b); });
+    for (int k : spheres) {
+      if (std::optional<PushContact> c = contactBehind(body_, pusher_radius_, k, n)) return c;
+    }
+    std::optional<PushContact> best;
+    for (const PushContact& c : pushContacts(body_, pusher_radius_, n)) {
+      if (!best || std::fabs(c.lever) < std::fabs(best->lever)) best = c;
+    }
+    return best;
+  }
+
+ private:
+  const SceneBody& body_;
+  double pusher_radius_;
+  std::vector<std::vector<PushContact>> contacts_;
+};
 
 /// One push of a plan: the body from `from` at `yaw` along `heading`, straight for `length` or,
 /// with a radius, along an arc turning by `turn` (its tangent and the body turning together), the
@@ -76,16 +134,13 @@ Eigen::Vector2d pushDirection(double yaw, double heading) {
   return Eigen::Rotation2Dd(-yaw) * unit(heading);
 }
 
-/// A straight push from `from` to `to` at `yaw` behind the contact of least |lever| (the first of
-/// equals), or none (no contact pushes that way).
-std::optional<Leg> straightLeg(const SceneBody& body, double pusher_radius,
-                               const Eigen::Vector2d& from, const Eigen::Vector2d& to, double yaw) {
+/// A straight push from `from` to `to` at `yaw` behind the contact of least |lever|, or none (no
+/// contact pushes that way).
+std::optional<Leg> straightLeg(const ContactTable& contacts, const Eigen::Vector2d& from,
+                               const Eigen::Vector2d& to, double yaw) {
   const Eigen::Vector2d shift = to - from;
   const double heading = std::atan2(shift.y(), shift.x());
-  std::optional<PushContact> best;
-  for (const PushContact& c : pushContacts(body, pusher_radius, pushDirection(yaw, heading))) {
-    if (!best || std::fabs(c.lever) < std::fabs(best->lever)) best = c;
-  }
+  const std::optional<PushContact> best = contacts.leastLever(pushDirection(yaw, heading));
   if (!best) return std::nullopt;
   return Leg{from, yaw, heading, shift.norm(), 0.0, 0.0, *best};
 }
@@ -94,7 +149,7 @@ std::optional<Leg> straightLeg(const SceneBody& body, double pusher_radius,
 /// the pusher's way from one contact to the next, straight, taken twice for the way round).
 void keepCheaper(std::vector<Leg> legs, double rho, Layout& best) {
   legs.erase(std::remove_if(legs.begin(), legs.end(),
-                            [](const Leg& leg) { return leg.pathLength() < kTolerance; }),
+                            [&](const Leg& leg) { return leg.pathLength() < kTolerance * rho; }),
              legs.end());
   if (legs.empty()) return;
   double cost = 0.0;
@@ -112,14 +167,13 @@ void keepCheaper(std::vector<Leg> legs, double rho, Layout& best) {
 /// The cheapest plan from `from` at `yaw` by `shift`, turning by `turn`, of a push along an arc
 /// (the contact's lever setting its curvature) between two straight pushes along the arc's
 /// tangents, either of them or both of no length, or an arc and a straight push to the target in
-/// either order; over every start heading and arc contact.
-Layout bestLayout(const SceneBody& body, double pusher_radius, const Eigen::Vector2d& from,
-                  double yaw, const Eigen::Vector2d& shift, double turn) {
-  const double rho = body.turning_radius;
+/// either order; over every push direction in the body's frame (each degree) and arc contact.
+Layout bestLayout(const ContactTable& contacts, double rho, const Eigen::Vector2d& from, double yaw,
+                  const Eigen::Vector2d& shift, double turn) {
   const Eigen::Vector2d to = from + shift;
   Layout best;
   if (std::fabs(turn) < kSmallestTurn) {
-    if (std::optional<Leg> leg = straightLeg(body, pusher_radius, from, to, yaw)) {
+    if (std::optional<Leg> leg = straightLeg(contacts, from, to, yaw)) {
       keepCheaper({*leg}, rho, best);
     }
     return best;
@@ -127,11 +181,11 @@ Layout bestLayout(const SceneBody& body, double pusher_radius, const Eigen::Vect
   Eigen::Matrix2d pieces;
   pieces << 1.0, std::cos(turn), 0.0, std::sin(turn);
   for (int i = 0; i < kHeadings; ++i) {
-    const double heading = 2.0 * M_PI * i / kHeadings - M_PI;
+    const Eigen::Vector2d n = ContactTable::direction(i);
+    const double heading = yaw + std::atan2(n.y(), n.x());
     // In the frame of the heading: shift = a e1 + chord u(turn / 2) + b u(turn).
     const Eigen::Vector2d local = Eigen::Rotation2Dd(-heading) * shift;
-    for (const PushContact& contact :
-         pushContacts(body, pusher_radius, pushDirection(yaw, heading))) {
+    for (const PushContact& contact : contacts.at(i)) {
       if (contact.lever * turn <= 0.0) continue;
       const double radius = rho * rho / std::fabs(contact.lever);
       const double chord = 2.0 * radius * std::sin(0.5 * std::fabs(turn));
@@ -142,9 +196,8 @@ Layout bestLayout(const SceneBody& body, double pusher_radius, const Eigen::Vect
       if (straights.minCoeff() >= 0.0) {
         const Eigen::Vector2d enter = from + straights(0) * unit(heading);
         const Leg turning = arc(enter);
-        const std::optional<Leg> before = straightLeg(body, pusher_radius, from, enter, yaw);
-        const std::optional<Leg> after =
-            straightLeg(body, pusher_radius, turning.end(), to, yaw + turn);
+        const std::optional<Leg> before = straightLeg(contacts, from, enter, yaw);
+        const std::optional<Leg> after = straightLeg(contacts, turning.end(), to, yaw + turn);
         if ((before || straights(0) == 0.0) && (after || straights(1) == 0.0)) {
           std::vector<Leg> legs;
           if (before) legs.push_back(*before);
@@ -155,17 +208,35 @@ Layout bestLayout(const SceneBody& body, double pusher_radius, const Eigen::Vect
       }
       // The turn last, into the target, after a straight push to where it starts.
       const Eigen::Vector2d into = to - chord * unit(heading + 0.5 * turn);
-      if (std::optional<Leg> first = straightLeg(body, pusher_radius, from, into, yaw)) {
+      if (std::optional<Leg> first = straightLeg(contacts, from, into, yaw)) {
         keepCheaper({*first, arc(into)}, rho, best);
       }
       // The turn first, then a straight push to the target.
-      if (std::optional<Leg> then =
-              straightLeg(body, pusher_radius, arc(from).end(), to, yaw + turn)) {
+      if (std::optional<Leg> then = straightLeg(contacts, arc(from).end(), to, yaw + turn)) {
         keepCheaper({arc(from), *then}, rho, best);
       }
     }
   }
   return best;
+}
+
+/// The pusher's command per unit of a leg's path (constant along it, in the body's frame): its
+/// own velocity less the contact's reaction, the force that moves the body along the leg. A
+/// straight push through the centre: 2 (the pusher moves the body at half its speed); on an arc
+/// the pusher also swings round with the body.
+double commandPerLength(const Leg& leg, const SceneBody& body) {
+  const double rho = body.turning_radius;
+  const double curvature = leg.radius > 0.0 ? std::copysign(1.0 / leg.radius, leg.turn) : 0.0;
+  const Eigen::Vector2d tangent = unit(leg.heading - leg.yaw);
+  const Eigen::Vector2d q = leg.contact.pusher;
+  const Eigen::Vector2d o = body.spheres[leg.contact.sphere].offset.head<2>();
+  const Eigen::Vector2d d = q - o;
+  Eigen::Vector3d gradient, motion;  // of c on the body (p, s); the body's (p, s) per length
+  gradient << -2.0 * d, -2.0 * d.dot(Eigen::Vector2d(-o.y(), o.x())) / rho;
+  motion << tangent, rho * curvature;
+  const double lambda = std::max(0.0, gradient.dot(motion) / gradient.squaredNorm());
+  const Eigen::Vector2d own = tangent + curvature * Eigen::Vector2d(-q.y(), q.x());
+  return (own - 2.0 * lambda * d).norm();
 }
 
 /// The plan's motion: the pusher's way to each leg's contact round the body at rest
@@ -201,6 +272,15 @@ struct TurningMotion {
     }
     return x;
   }
+
+  /// The leg pushing at t, or -1 while the pusher is on its way.
+  int legAt(double t) const {
+    for (size_t k = 0; k < legs.size(); ++k) {
+      if (t < transit_ends[k]) return -1;
+      if (t < leg_ends[k] || k + 1 == legs.size()) return static_cast<int>(k);
+    }
+    return -1;
+  }
 };
 
 bool withinBounds(const BodyTask& task, const Eigen::Vector2d& p) {
@@ -232,19 +312,10 @@ std::pair<int, int> pusherAndBody(const SceneTask& task) {
 std::vector<PushContact> pushContacts(const SceneBody& body, double pusher_radius,
                                       const Eigen::Vector2d& n) {
   std::vector<PushContact> contacts;
-  for (size_t k = 0; k < body.spheres.size(); ++k) {
-    const Eigen::Vector2d centre = body.spheres[k].offset.head<2>();
-    const Eigen::Vector2d q = centre - (body.spheres[k].radius + pusher_radius) * n;
-    bool reachable = true;
-    for (size_t j = 0; j < body.spheres.size() && reachable; ++j) {
-      if (j == k) continue;
-      // The pusher comes along -n towards q: its nearest approach to sphere j on that ray.
-      const Eigen::Vector2d w = body.spheres[j].offset.head<2>() - q;
-      const double behind = std::max(0.0, -w.dot(n));
-      reachable =
-          (w + behind * n).norm() >= (body.spheres[j].radius + pusher_radius) * (1.0 - kTolerance);
+  for (int k = 0; k < static_cast<int>(body.spheres.size()); ++k) {
+    if (std::optional<PushContact> c = contactBehind(body, pusher_radius, k, n)) {
+      contacts.push_back(*c);
     }
-    if (reachable) contacts.push_back({static_cast<int>(k), q, cross(centre, n)});
   }
   return contacts;
 }
@@ -272,17 +343,19 @@ std::optional<PushPlan> planTurningPush(const SceneTask& task,
   const Eigen::Vector2d to = task.bodies[pushed].target.head<2>();
   const double turn = task.bodies[pushed].target_yaw - body.yaw;
   if (std::fabs(turn) > kLargestTurn) return std::nullopt;
-  const Layout layout = bestLayout(body, pusher_radius, from, body.yaw, to - from, turn);
+  const ContactTable contacts(body, pusher_radius);
+  const Layout layout = bestLayout(contacts, body.turning_radius, from, body.yaw, to - from, turn);
   if (!std::isfinite(layout.cost)) return std::nullopt;
 
-  // The pusher's ways round the body to each leg's first contact; the phases by least effort
-  // (a pusher moves a body at about half its own speed).
+  // The pusher's ways round the body to each leg's first contact; the phases by least effort:
+  // each takes the horizon's share of the pusher's command it needs.
   TurningMotion motion;
   motion.pusher = pusher;
   motion.pushed = pushed;
   motion.rho = body.turning_radius;
   motion.legs = layout.legs;
   double effort = 0.0;
+  std::vector<double> leg_efforts;
   Eigen::Vector2d at = scene.bodies()[pusher].position.head<2>();
   for (const Leg& leg : layout.legs) {
     PathQuery query{at, leg.pusherAt(0.0), {}, {}, 0.0, {}, {}};
@@ -296,7 +369,8 @@ std::optional<PushPlan> planTurningPush(const SceneTask& task,
       if (!withinBounds(task.bodies[pusher], point)) return std::nullopt;
       motion.transits.back().push_back(point);
     }
-    effort += pathLength(motion.transits.back()) + 2.0 * leg.pathLength();
+    leg_efforts.push_back(commandPerLength(leg, body) * leg.pathLength());
+    effort += pathLength(motion.transits.back()) + leg_efforts.back();
     at = leg.pusherAt(leg.pathLength());
   }
   const double horizon = task.horizon;
@@ -306,7 +380,7 @@ std::optional<PushPlan> planTurningPush(const SceneTask& task,
   for (size_t k = 0; k < layout.legs.size(); ++k) {
     time += horizon * pathLength(motion.transits[k]) / effort;
     motion.transit_ends.push_back(time);
-    time += horizon * 2.0 * layout.legs[k].pathLength() / effort;
+    time += horizon * leg_efforts[k] / effort;
     motion.leg_ends.push_back(k + 1 == layout.legs.size() ? horizon : time);
   }
   const Eigen::VectorXd initial = scene.initialState();
@@ -323,27 +397,24 @@ std::optional<PushPlan> planTurningPush(const SceneTask& task,
     return t >= dt ? Eigen::VectorXd((state(t) - state(t - dt)) / dt)
                    : Eigen::VectorXd((state(t + dt) - state(t)) / dt);
   };
-  // The force of the pusher's pair in contact that moves the body (position and s) along the
-  // plan: c = |p_P - p_S|^2 - (r_P + r_S)^2 with p_S = p_B + R(s / rho) o.
+  // The force of the pushing leg's contact that moves the body (position and s) along the plan,
+  // its projection (>= 0): c = |p_P - p_S|^2 - (r_P + r_S)^2 with p_S = p_B + R(s / rho) o.
   const int count = static_cast<int>(pairs.size());
   const double rho = body.turning_radius;
   const auto multipliers = [=](double t) {
     Eigen::VectorXd lambda = Eigen::VectorXd::Zero(count);
+    const int leg = motion.legAt(t);
+    if (leg < 0) return lambda;
     const Eigen::VectorXd x = state(t), v = velocity(t);
     const int p = scene.stateIndex(pusher), b = scene.stateIndex(pushed);
-    if (v.segment<3>(b).squaredNorm() == 0.0) return lambda;
-    const double yaw = x(b + 2) / rho;
-    for (size_t k = 0; k < body.spheres.size(); ++k) {
-      const Eigen::Vector2d turned = Eigen::Rotation2Dd(yaw) * body.spheres[k].offset.head<2>();
-      const Eigen::Vector2d d = x.segment<2>(p) - x.segment<2>(b) - turned;
-      const double size = body.spheres[k].radius + pusher_radius;
-      if (d.norm() - size > kContactGap * size) continue;
-      Eigen::Vector3d gradient;
-      gradient << -2.0 * d, -2.0 * d.dot(Eigen::Vector2d(-turned.y(), turned.x())) / rho;
-      lambda(pair_of_sphere[k]) =
-          std::max(0.0, gradient.dot(v.segment<3>(b)) / gradient.squaredNorm());
-      break;
-    }
+    const int k = motion.legs[leg].contact.sphere;
+    const Eigen::Vector2d turned =
+        Eigen::Rotation2Dd(x(b + 2) / rho) * body.spheres[k].offset.head<2>();
+    const Eigen::Vector2d d = x.segment<2>(p) - x.segment<2>(b) - turned;
+    Eigen::Vector3d gradient;
+    gradient << -2.0 * d, -2.0 * d.dot(Eigen::Vector2d(-turned.y(), turned.x())) / rho;
+    lambda(pair_of_sphere[k]) =
+        std::max(0.0, gradient.dot(v.segment<3>(b)) / gradient.squaredNorm());
     return lambda;
   };
 

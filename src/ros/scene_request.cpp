@@ -104,6 +104,9 @@ std::string applyTurning(const fesd_trajopt::BodySpec& spec, const fesd::TaskLim
     return "";
   }
   if (body.actuated) return " turns and is actuated: only passive bodies turn";
+  if (turns_in_urdf && !spec.override_initial_position && spec.initial_yaw != 0.0) {
+    return " takes its yaw from the URDF: set override_initial_position for initial_yaw";
+  }
   if (!turns_in_urdf || spec.override_initial_position) body.yaw = spec.initial_yaw;
   // The request's position is the spheres' centre of pressure (BodySpec.msg): their offsets
   // move, the body does not; a URDF link's spheres are where the URDF puts them: it moves.
@@ -323,6 +326,9 @@ TaskBuild buildTask(const NodeConfig& config, const SceneFields& request, const 
     }
     for (const std::string& link : urdf.ignored_links) {
       build.notes.push_back("link '" + link + "' has no usable collision geometry and is ignored");
+    }
+    for (const std::string& shape : urdf.ignored_shapes) {
+      build.notes.push_back("collision " + shape + " is not a sphere and is ignored");
     }
     task.scene = urdf.scene;
     build.planar_joints = urdf.planar_joints;

@@ -420,12 +420,19 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
     label.pose.position.x = label_at.x / std::max(touching, 1);
     label.pose.position.y = label_at.y / std::max(touching, 1);
     label.pose.position.z = label_at.z / std::max(touching, 1) + 0.5;
-    // Simultaneous switches would print on top of each other: stack them downwards.
+    // Switches near each other would print on top of each other: stack them downwards until the
+    // label overlaps none placed before (it only moves strictly down, so this ends).
     const double line_height = 0.8 * detail;
-    for (const geometry_msgs::Point& placed : labels_placed) {
-      if (std::abs(placed.x - label.pose.position.x) < 4.0 * detail &&
-          std::abs(placed.y - label.pose.position.y) < line_height) {
-        label.pose.position.y = placed.y - line_height;
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (const geometry_msgs::Point& placed : labels_placed) {
+        double& y = label.pose.position.y;
+        const double below = placed.y - line_height;
+        if (std::abs(placed.x - label.pose.position.x) < 4.0 * detail &&
+            std::abs(placed.y - y) < line_height && below < y) {
+          y = below;
+          moved = true;
+        }
       }
     }
     labels_placed.push_back(label.pose.position);

@@ -15,13 +15,15 @@ struct LinkSphere {
   double radius;
 };
 
-/// The link's collision spheres (and, in planar scenes, cylinders normal to the plane) at `pose`.
-std::vector<LinkSphere> linkSpheres(const urdf::Link& link, const Eigen::Isometry3d& pose,
-                                    int dim) {
+/// The link's collision spheres (and, in planar scenes, cylinders normal to the plane) at `pose`;
+/// its other collision shapes into `ignored` ("<link>/collision_<k>").
+std::vector<LinkSphere> linkSpheres(const urdf::Link& link, const Eigen::Isometry3d& pose, int dim,
+                                    std::vector<std::string>& ignored) {
   std::vector<urdf::CollisionSharedPtr> collisions = link.collision_array;
   if (collisions.empty() && link.collision) collisions.push_back(link.collision);
   std::vector<LinkSphere> spheres;
-  for (const urdf::CollisionSharedPtr& collision : collisions) {
+  for (size_t k = 0; k < collisions.size(); ++k) {
+    const urdf::CollisionSharedPtr& collision = collisions[k];
     if (!collision || !collision->geometry) continue;
     const Eigen::Isometry3d frame = pose * isometryFromUrdf(collision->origin);
     double radius = 0.0;
@@ -31,7 +33,11 @@ std::vector<LinkSphere> linkSpheres(const urdf::Link& link, const Eigen::Isometr
                std::abs(frame.linear().col(2).z()) > 1.0 - 1e-6) {
       radius = static_cast<const urdf::Cylinder&>(*collision->geometry).radius;
     }
-    if (radius != 0.0) spheres.push_back({frame.translation().head(dim), radius});
+    if (radius != 0.0) {
+      spheres.push_back({frame.translation().head(dim), radius});
+    } else {
+      ignored.push_back(link.name + "/collision_" + std::to_string(k));
+    }
   }
   return spheres;
 }
@@ -55,17 +61,18 @@ SceneBody linkBody(const std::string& link, const std::vector<LinkSphere>& spher
   return body;
 }
 
-/// The planar joint's turn sign (+-1 for an axis along +-z of its frame and of the world), 0 if
-/// it is no planar joint about the scene's z.
+/// The planar joint's turn sign: +-1 when it moves its link in the scene's (x, y) plane (its axis
+/// along its frame's z, that z along the world's up or down), theta turning about its frame's z
+/// as MoveIt reads a planar joint; 0 otherwise.
 double planarTurnSign(const urdf::Joint& joint, const Eigen::Isometry3d& origin) {
   if (joint.type != urdf::Joint::PLANAR) return 0.0;
   const Eigen::Vector3d axis =
       Eigen::Vector3d(joint.axis.x, joint.axis.y, joint.axis.z).normalized();
-  const Eigen::Vector3d normal = origin.linear() * axis;
-  if (std::abs(std::abs(axis.z()) - 1.0) > 1e-9 || std::abs(std::abs(normal.z()) - 1.0) > 1e-9) {
+  const double up = origin.linear()(2, 2);
+  if (!(std::abs(std::abs(axis.z()) - 1.0) <= 1e-9) || !(std::abs(std::abs(up) - 1.0) <= 1e-9)) {
     return 0.0;
   }
-  return normal.z() > 0.0 ? 1.0 : -1.0;
+  return up > 0.0 ? 1.0 : -1.0;
 }
 
 }  // namespace
@@ -112,17 +119,31 @@ UrdfScene sceneFromUrdf(const std::string& xml, bool planar, const UrdfLimits& l
     urdf::LinkConstSharedPtr link;
     Eigen::Isometry3d pose;
     bool fixed;
-    double turn_sign;  ///< of its joint when planar about z from a fixed link, else 0
+    double turn_sign;           ///< of its joint when planar about z from a fixed link, else 0
+    std::string turning_above;  ///< a link above it that turns, or ""
   };
   // An explicit stack, children pushed last-first: the depth-first order of the links without a
   // recursion as deep as the URDF's chain.
-  std::vector<Visit> stack{{model->getRoot(), Eigen::Isometry3d::Identity(), true, 0.0}};
+  std::vector<Visit> stack{{model->getRoot(), Eigen::Isometry3d::Identity(), true, 0.0, ""}};
   while (!stack.empty()) {
     const Visit visit = stack.back();
     stack.pop_back();
     const urdf::LinkConstSharedPtr& link = visit.link;
-    const std::vector<LinkSphere> spheres = linkSpheres(*link, visit.pose, dim);
-    if (spheres.empty() && link != model->getRoot()) result.ignored_links.push_back(link->name);
+    std::vector<std::string> ignored;
+    const std::vector<LinkSphere> spheres = linkSpheres(*link, visit.pose, dim, ignored);
+    if (spheres.empty() && link != model->getRoot()) {
+      result.ignored_links.push_back(link->name);
+    } else {
+      result.ignored_shapes.insert(result.ignored_shapes.end(), ignored.begin(), ignored.end());
+    }
+    if (!spheres.empty() && !visit.turning_above.empty()) {
+      result.error = "link '" + link->name + "' hangs from '" + visit.turning_above +
+                     "', which turns on its planar joint: its spheres would not turn with it (give "
+                     "them to '" +
+                     visit.turning_above + "')";
+      return result;
+    }
+    const bool turns = visit.turn_sign != 0.0 && spheres.size() > 1;
     if (!spheres.empty() && visit.fixed) {
       for (size_t k = 0; k < spheres.size(); ++k) {
         result.scene.obstacles().push_back(
@@ -130,7 +151,7 @@ UrdfScene sceneFromUrdf(const std::string& xml, bool planar, const UrdfLimits& l
       }
     } else if (!spheres.empty()) {
       SceneBody body = linkBody(link->name, spheres, dim);
-      if (visit.turn_sign != 0.0 && spheres.size() > 1) turnAboutPressureCentre(body);
+      if (turns) turnAboutPressureCentre(body);
       if (visit.turn_sign != 0.0) {
         result.planar_joints.push_back(
             {link->parent_joint->name, static_cast<int>(result.scene.bodies().size()), visit.pose,
@@ -144,7 +165,8 @@ UrdfScene sceneFromUrdf(const std::string& xml, bool planar, const UrdfLimits& l
       const Eigen::Isometry3d pose =
           visit.pose * isometryFromUrdf((*joint)->parent_to_joint_origin_transform);
       stack.push_back({child, pose, visit.fixed && (*joint)->type == urdf::Joint::FIXED,
-                       visit.fixed ? planarTurnSign(**joint, pose) : 0.0});
+                       visit.fixed ? planarTurnSign(**joint, pose) : 0.0,
+                       turns ? link->name : visit.turning_above});
     }
   }
   return result;

@@ -1,7 +1,9 @@
 // Scenes from URDF (scene/urdf_scene.cpp): spheres and upright cylinders become bodies, fixed
 // links obstacles, in the plane and in space; malformed XML is refused with a message.
+#include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -90,28 +92,32 @@ TEST(UrdfScene, AChainDeeperThanAnyCallStackIsWalkedInOrder) {
 
 namespace {
 
-// A link of three spheres (an L) on a planar joint whose frame is turned by 0.5 rad about z and
-// whose axis is `axis_z` (+1 or -1) along its z.
-std::string planarLinkUrdf(int axis_z) {
+// A link of three spheres (an L) on a planar joint whose frame is turned by 0.5 rad about z
+// (and by `roll` about x: pi turns its z down), its axis `axis_z` (+1 or -1) along its z.
+std::string planarLinkUrdf(int axis_z, double roll) {
   std::ostringstream xml;
+  xml.precision(17);
   xml << R"(<robot name="r"><link name="world"/>
     <link name="l">
       <collision><origin xyz="0.2 0 0"/><geometry><sphere radius="0.1"/></geometry></collision>
       <collision><origin xyz="0.4 0 0"/><geometry><sphere radius="0.1"/></geometry></collision>
       <collision><origin xyz="0.2 0.3 0"/><geometry><sphere radius="0.15"/></geometry></collision>
+      <collision><geometry><box size="1 1 1"/></geometry></collision>
     </link>
     <joint name="slide" type="planar"><parent link="world"/><child link="l"/>
-      <origin xyz="1 2 0" rpy="0 0 0.5"/><axis xyz="0 0 )"
-      << axis_z << R"("/></joint></robot>)";
+      <origin xyz="1 2 0" rpy=")"
+      << roll << R"( 0 0.5"/><axis xyz="0 0 )" << axis_z << R"("/></joint></robot>)";
   return xml.str();
 }
 
-// The spheres' centres of planarLinkUrdf at joint coordinates (x, y, theta), by its kinematics.
-std::vector<Eigen::Vector2d> planarLinkSpheres(const Eigen::Vector3d& joint, int axis_z) {
+// The spheres' centres of planarLinkUrdf at joint coordinates (x, y, theta), by its kinematics:
+// theta about the joint frame's z, as MoveIt reads a planar joint.
+std::vector<Eigen::Vector2d> planarLinkSpheres(const Eigen::Vector3d& joint, double roll) {
   const Eigen::Isometry3d link = Eigen::Translation3d(1.0, 2.0, 0.0) *
                                  Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()) *
+                                 Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()) *
                                  Eigen::Translation3d(joint.x(), joint.y(), 0.0) *
-                                 Eigen::AngleAxisd(joint.z(), axis_z * Eigen::Vector3d::UnitZ());
+                                 Eigen::AngleAxisd(joint.z(), Eigen::Vector3d::UnitZ());
   std::vector<Eigen::Vector2d> centres;
   for (const Eigen::Vector3d& local :
        {Eigen::Vector3d(0.2, 0.0, 0.0), Eigen::Vector3d(0.4, 0.0, 0.0),
@@ -124,9 +130,12 @@ std::vector<Eigen::Vector2d> planarLinkSpheres(const Eigen::Vector3d& joint, int
 }  // namespace
 
 TEST(UrdfScene, ALinkOfSpheresOnAPlanarJointTurnsAndMapsBackToItsJoint) {
-  for (const int axis_z : {1, -1}) {
-    const fesd::UrdfScene read = fesd::sceneFromUrdf(planarLinkUrdf(axis_z), true);
+  for (const auto& [axis_z, roll] :
+       std::vector<std::pair<int, double>>{{1, 0.0}, {-1, 0.0}, {1, M_PI}}) {
+    SCOPED_TRACE("axis " + std::to_string(axis_z) + ", roll " + std::to_string(roll));
+    const fesd::UrdfScene read = fesd::sceneFromUrdf(planarLinkUrdf(axis_z, roll), true);
     ASSERT_EQ(read.error, "");
+    EXPECT_EQ(read.ignored_shapes, std::vector<std::string>{"l/collision_3"});
     ASSERT_EQ(read.scene.bodies().size(), 1u);
     const fesd::SceneBody& body = read.scene.bodies()[0];
     EXPECT_TRUE(body.turns);
@@ -138,22 +147,31 @@ TEST(UrdfScene, ALinkOfSpheresOnAPlanarJointTurnsAndMapsBackToItsJoint) {
     const fesd::UrdfPlanarJoint& joint = read.planar_joints[0];
     EXPECT_EQ(joint.joint, "slide");
     EXPECT_EQ(joint.body, 0);
-    EXPECT_EQ(joint.turn_sign, axis_z);
+    EXPECT_EQ(joint.turn_sign, roll == 0.0 ? 1.0 : -1.0);
     EXPECT_LT(fesd::planarJointValues(joint, body.position, 0.0).norm(), 1e-14);
 
     // The body placed on the kinematics' spheres at some joint coordinates: every sphere where
     // the URDF puts it, and the coordinates recovered from the body's position and yaw.
     const Eigen::Vector3d coordinates(0.3, -0.2, 0.7);
-    const std::vector<Eigen::Vector2d> centres = planarLinkSpheres(coordinates, axis_z);
-    const double yaw = axis_z * coordinates.z();
+    const std::vector<Eigen::Vector2d> centres = planarLinkSpheres(coordinates, roll);
+    const double yaw = joint.turn_sign * coordinates.z();
     const Eigen::Rotation2Dd turn(yaw);
     const Eigen::Vector2d position = centres[0] - turn * body.spheres[0].offset.head<2>();
     for (size_t k = 0; k < 3; ++k) {
       EXPECT_LT((position + turn * body.spheres[k].offset.head<2>() - centres[k]).norm(), 1e-14)
-          << "sphere " << k << ", axis " << axis_z;
+          << "sphere " << k;
     }
     EXPECT_LT((fesd::planarJointValues(joint, position, yaw) - coordinates).norm(), 1e-14);
   }
+}
+
+TEST(UrdfScene, SpheresBelowATurningLinkAreRefused) {
+  std::string urdf = planarLinkUrdf(1, 0.0);
+  urdf.replace(urdf.find("</robot>"), 8, R"(<link name="handle">
+      <collision><geometry><sphere radius="0.1"/></geometry></collision></link>
+    <joint name="weld" type="fixed"><parent link="l"/><child link="handle"/></joint></robot>)");
+  const std::string error = fesd::sceneFromUrdf(urdf, true).error;
+  EXPECT_NE(error.find("'handle' hangs from 'l'"), std::string::npos) << error;
 }
 
 TEST(UrdfScene, SeveralSpheresOfAFixedLinkAreObstaclesAndOfAFloatingOneABodyThatTranslates) {

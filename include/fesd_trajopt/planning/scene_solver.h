@@ -135,9 +135,9 @@ struct SceneSolveOptions {
   const SceneOutcome* refine = nullptr;
   /// Pairs whose gaps are kept along whole elements of these intervals from the first round.
   std::vector<PairInterval> held_grazes;
-  /// Solves that hold the plan's new grazes (gap guards) before the answer, at most. A cut left
-  /// beside the last guard shrinks about 4x a round (a pusher sliding over the kinks between a
-  /// T's spheres: 5e-4 to 1e-6 of the pair's size in 5 rounds).
+  /// Solves that hold the plan's new grazes (gap guards) before the answer, at most (in every
+  /// scene). A cut left beside the last guard shrinks about 4x a round (a pusher sliding over the
+  /// kinks between a T's spheres: from 5e-4 to 1.2e-6 of depth in 4 rounds).
   int max_graze_rounds = 6;
   const SolveMonitor* monitor = nullptr;  ///< progress and cancel of the solve; not owned
 };

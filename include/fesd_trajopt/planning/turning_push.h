@@ -33,8 +33,10 @@ std::vector<PushContact> pushContacts(const SceneBody& body, double pusher_radiu
 /// the pusher goes round its spheres to the next contact. The cheapest over the start headings
 /// (every degree) and arc spheres wins: length, plus how far the straight pushes' lever would
 /// turn the body, plus the pusher's ways between pushes. The pusher gets to its first contact
-/// round the body's spheres; the phases take the horizon by least effort; the multipliers are
-/// those that move the body along the plan (least squares, >= 0).
+/// round the body's spheres; the phases share the horizon by the pusher's command each needs
+/// (the least effort at the speed bound); the multiplier of the pushing contact is the one that
+/// moves the body along the plan (its projection on the contact's direction, >= 0), exactly on
+/// the arcs.
 ///
 /// Only for a planar scene of one actuated disc without a target and one turning body with a
 /// position and a yaw target, nothing else (no obstacles or walls, bounds the plan keeps), whose

@@ -30,8 +30,9 @@ Eigen::Vector3d planarJointValues(const UrdfPlanarJoint& joint, const Eigen::Vec
 struct UrdfScene {
   Scene scene{2};
   std::vector<UrdfPlanarJoint> planar_joints;
-  std::vector<std::string> ignored_links;  ///< links without usable collision geometry
-  std::string error;                       ///< empty on success
+  std::vector<std::string> ignored_links;   ///< links without usable collision geometry
+  std::vector<std::string> ignored_shapes;  ///< other shapes of links with spheres
+  std::string error;                        ///< empty on success
 };
 
 /// What a URDF may hold: it comes with a request, so it is bounded before it is walked.
@@ -47,8 +48,10 @@ struct UrdfLimits {
 ///    bodies (passive until configured otherwise), one per link: a sphere at its centre, or
 ///    several spheres moving together about their mean;
 ///  - a link of several spheres on a planar joint about z from a link fixed to the world turns
-///    (SceneBody::turns, at its centre of pressure): its joint is listed in planar_joints, as is
-///    any planar joint about z of the world carrying a body;
+///    (SceneBody::turns, at its centre of pressure; theta about the joint frame's z, as MoveIt
+///    reads a planar joint): its joint is listed in planar_joints, as is any planar joint about z
+///    of the world carrying a body; links with spheres below a turning link are refused (they
+///    would not turn with it);
 ///  - planar scenes use (x, y), spatial ones (x, y, z).
 /// Links without such geometry are listed in ignored_links. Malformed XML gives an error; a URDF
 /// without movable links is fine (a request may add every body); one beyond `limits` is refused.
