@@ -220,6 +220,15 @@ Layout bestLayout(const ContactTable& contacts, double rho, const Eigen::Vector2
   return best;
 }
 
+/// The gradient of a pusher-sphere constraint c = |p_P - p_S|^2 - (r_P + r_S)^2 on the body's
+/// (p, s), p_S = p_B + R(s / rho) o: d = p_P - p_S, `turned` = R(s / rho) o.
+Eigen::Vector3d contactGradient(const Eigen::Vector2d& d, const Eigen::Vector2d& turned,
+                                double rho) {
+  Eigen::Vector3d gradient;
+  gradient << -2.0 * d, -2.0 * d.dot(Eigen::Vector2d(-turned.y(), turned.x())) / rho;
+  return gradient;
+}
+
 /// The pusher's command per unit of a leg's path (constant along it, in the body's frame): its
 /// own velocity less the contact's reaction, the force that moves the body along the leg. A
 /// straight push through the centre: 2 (the pusher moves the body at half its speed); on an arc
@@ -231,8 +240,8 @@ double commandPerLength(const Leg& leg, const SceneBody& body) {
   const Eigen::Vector2d q = leg.contact.pusher;
   const Eigen::Vector2d o = body.spheres[leg.contact.sphere].offset.head<2>();
   const Eigen::Vector2d d = q - o;
-  Eigen::Vector3d gradient, motion;  // of c on the body (p, s); the body's (p, s) per length
-  gradient << -2.0 * d, -2.0 * d.dot(Eigen::Vector2d(-o.y(), o.x())) / rho;
+  const Eigen::Vector3d gradient = contactGradient(d, o, rho);
+  Eigen::Vector3d motion;  // the body's (p, s) per length
   motion << tangent, rho * curvature;
   const double lambda = std::max(0.0, gradient.dot(motion) / gradient.squaredNorm());
   const Eigen::Vector2d own = tangent + curvature * Eigen::Vector2d(-q.y(), q.x());
@@ -282,11 +291,6 @@ struct TurningMotion {
     return -1;
   }
 };
-
-bool withinBounds(const BodyTask& task, const Eigen::Vector2d& p) {
-  return (task.workspace_lower.size() == 0 || (p.array() >= task.workspace_lower.array()).all()) &&
-         (task.workspace_upper.size() == 0 || (p.array() <= task.workspace_upper.array()).all());
-}
 
 /// The one pusher and the one turning body with a pose to reach, or (-1, -1).
 std::pair<int, int> pusherAndBody(const SceneTask& task) {
@@ -366,7 +370,7 @@ std::optional<PushPlan> planTurningPush(const SceneTask& task,
     }
     motion.transits.emplace_back();
     for (const Eigen::Vector2d& point : pathAround(query)) {
-      if (!withinBounds(task.bodies[pusher], point)) return std::nullopt;
+      if (!task.bodies[pusher].insideWorkspace(point)) return std::nullopt;
       motion.transits.back().push_back(point);
     }
     leg_efforts.push_back(commandPerLength(leg, body) * leg.pathLength());
@@ -387,8 +391,8 @@ std::optional<PushPlan> planTurningPush(const SceneTask& task,
   const auto state = [=](double t) { return motion.state(scene, initial, t); };
   for (int k = 0; k <= 256; ++k) {
     const Eigen::VectorXd x = state(horizon * k / 256.0);
-    if (!withinBounds(task.bodies[pusher], x.segment(scene.stateIndex(pusher), 2)) ||
-        !withinBounds(task.bodies[pushed], x.segment(scene.stateIndex(pushed), 2))) {
+    if (!task.bodies[pusher].insideWorkspace(x.segment(scene.stateIndex(pusher), 2)) ||
+        !task.bodies[pushed].insideWorkspace(x.segment(scene.stateIndex(pushed), 2))) {
       return std::nullopt;
     }
   }
@@ -397,8 +401,8 @@ std::optional<PushPlan> planTurningPush(const SceneTask& task,
     return t >= dt ? Eigen::VectorXd((state(t) - state(t - dt)) / dt)
                    : Eigen::VectorXd((state(t + dt) - state(t)) / dt);
   };
-  // The force of the pushing leg's contact that moves the body (position and s) along the plan,
-  // its projection (>= 0): c = |p_P - p_S|^2 - (r_P + r_S)^2 with p_S = p_B + R(s / rho) o.
+  // The force of the pushing leg's contact that moves the body (position and s) along the plan:
+  // its projection on the contact's gradient (>= 0).
   const int count = static_cast<int>(pairs.size());
   const double rho = body.turning_radius;
   const auto multipliers = [=](double t) {
@@ -411,8 +415,7 @@ std::optional<PushPlan> planTurningPush(const SceneTask& task,
     const Eigen::Vector2d turned =
         Eigen::Rotation2Dd(x(b + 2) / rho) * body.spheres[k].offset.head<2>();
     const Eigen::Vector2d d = x.segment<2>(p) - x.segment<2>(b) - turned;
-    Eigen::Vector3d gradient;
-    gradient << -2.0 * d, -2.0 * d.dot(Eigen::Vector2d(-turned.y(), turned.x())) / rho;
+    const Eigen::Vector3d gradient = contactGradient(d, turned, rho);
     lambda(pair_of_sphere[k]) =
         std::max(0.0, gradient.dot(v.segment<3>(b)) / gradient.squaredNorm());
     return lambda;
