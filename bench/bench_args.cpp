@@ -117,6 +117,8 @@ void applyHomotopyArguments(const Arguments& args, fesd::HomotopyOptions& option
       args.text("cold-mu-strategy", options.ipopt.cold_start_mu_strategy);
   options.ipopt.print_level = args.integer("ipopt-print-level", options.ipopt.print_level);
   options.ipopt.linear_solver = args.text("linear-solver", options.ipopt.linear_solver);
+  options.ipopt.near_solution_violation =
+      args.number("near-solution-violation", options.ipopt.near_solution_violation);
   const std::string method = args.text("mpcc-method", fesd::methodName(options.method));
   if (!fesd::parseMethod(method, options.method)) {
     throw std::invalid_argument("--mpcc-method=homotopy|active_set");

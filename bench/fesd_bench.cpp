@@ -43,7 +43,7 @@ const std::map<std::string, Command>& commands() {
         "    position and yaw errors, CSV and a summary against the default scene; --trajectory\n"
         "    writes one start's plan (--trajectory-seed, by default the first).\n"
         "    --starts=16 --first-seed=0 --budget=60 --accuracy=1e-2 --trajectory=PATH\n"
-        "    --trajectory-seed=N"}},
+        "    --trajectory-seed=N and the homotopy/Ipopt options of ocp-manipulation"}},
       {"kkt",
        {fesd_bench::kkt,
         "The showcase plus --rocks passive discs in reach: NLP sizes, densest Jacobian rows and\n"
@@ -72,7 +72,8 @@ const std::map<std::string, Command>& commands() {
         "    --divergence (per interval: OCP vs fine re-simulation, fine vs twice finer)\n"
         "    --history (per relaxed NLP) --trajectory (per interval; switches)\n"
         "    homotopy: --sigma0 --kappa --max-steps --relaxed-tolerance-factor --ipopt-tol\n"
-        "    --mu-strategy --cold-mu-strategy --ipopt-print-level --ipopt=name:value,..."}},
+        "    --mu-strategy --cold-mu-strategy --ipopt-print-level --ipopt=name:value,...\n"
+        "    --near-solution-violation=1e-2 (< 0: a plan's point starts Ipopt cold)"}},
       {"ocp-accuracy",
        {fesd_bench::ocpAccuracy,
         "Showcase: terminal accuracy (fine FESD re-simulation of the optimal controls) vs CPU\n"

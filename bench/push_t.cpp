@@ -52,7 +52,8 @@ void writeTrajectory(const std::string& path, const fesd::SceneTask& task,
 int pushT(const Arguments& args) {
   const int first_seed = args.integer("first-seed", 0);
   const int starts = args.integer("starts", 16);
-  const fesd::SceneSolveOptions options = nodeDefaultOptions(args.number("budget", 60.0));
+  fesd::SceneSolveOptions options = nodeDefaultOptions(args.number("budget", 60.0));
+  applyHomotopyArguments(args, options.ocp.homotopy);
   const double accuracy = args.number("accuracy", 1e-2);
   const std::string trajectory = args.text("trajectory", "");
   const int trajectory_seed = args.integer("trajectory-seed", first_seed);

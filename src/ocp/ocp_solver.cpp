@@ -158,8 +158,11 @@ OcpSolution OcpSolver::solve(const OcpSolution& previous, const TrajectoryGuess&
 }
 
 OcpSolution OcpSolver::solve(const Trajectory& trajectory, const TrajectoryGuess& fallback) {
-  OcpSolution from_trajectory = solveFromPoint(discretization_->guessFromTrajectory(trajectory),
-                                               options_.homotopy.wall_time_budget);
+  OcpSolution from_trajectory =
+      finish(guess_solver_.solveNearSolution(
+                 discretization_->nlp(), discretization_->guessFromTrajectory(trajectory),
+                 options_.guess_sigma, std::max(0.0, options_.homotopy.wall_time_budget)),
+             *discretization_);
   from_trajectory.start = OcpStart::kTrajectory;
   return orFallback(std::move(from_trajectory), fallback, OcpStart::kGuessAfterTrajectory,
                     "from the trajectory");

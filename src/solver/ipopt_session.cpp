@@ -22,6 +22,9 @@ double steadySeconds() {
 
 namespace {
 
+/// Ipopt's default bound_push, bound_frac and their slack versions, restored for a cold start.
+constexpr double kIpoptBoundPush = 1e-2;
+
 /// SCOTCH (MUMPS' ordering) runs multithreaded by default, and then its orderings, and with
 /// them the rounding of every factorization, differ from run to run; with one thread they are
 /// the same in every run. Set at load time, before any thread exists; a value from the
@@ -323,9 +326,15 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
                                         : settings_.warm_start_bound_push);
     }
   } else {
-    options.SetStringValue("mu_strategy", settings_.cold_start_mu_strategy);
+    const bool near = point.near_solution;
+    options.SetStringValue("mu_strategy",
+                           near ? settings_.mu_strategy : settings_.cold_start_mu_strategy);
     options.SetStringValue("warm_start_init_point", "no");
-    options.SetNumericValue("mu_init", 0.1);
+    options.SetNumericValue("mu_init", near ? settings_.near_solution_mu : 0.1);
+    for (const char* name : {"bound_push", "bound_frac", "slack_bound_push", "slack_bound_frac"}) {
+      options.SetNumericValue(name, near ? settings_.near_solution_bound_push : kIpoptBoundPush);
+    }
+    options.SetStringValue("bound_mult_init_method", near ? "mu-based" : "constant");
   }
   const auto start = std::chrono::steady_clock::now();
   Ipopt::SmartPtr<TnlpAdapter> adapter =

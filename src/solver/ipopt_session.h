@@ -13,6 +13,9 @@ namespace fesd {
 struct PrimalDualPoint {
   std::vector<double> x, bound_lower_multipliers, bound_upper_multipliers, constraint_multipliers;
   bool has_multipliers = false;
+  /// Without multipliers: x solves a nearby NLP (the same plan with more rows, or re-gridded), so
+  /// Ipopt starts next to it (IpoptSettings::near_solution_*) instead of re-centring from afar.
+  bool near_solution = false;
 };
 
 /// What one Ipopt solve produced.

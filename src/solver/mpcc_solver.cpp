@@ -414,10 +414,21 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const std::vector<double>& in
   return run(problem, point, sigma_initial, wall_time_budget);
 }
 
+MpccReport MpccSolver::solveNearSolution(RelaxedMpcc& problem, const std::vector<double>& solution,
+                                         double sigma_initial, double wall_time_budget) {
+  PrimalDualPoint point;
+  point.x = solution;
+  point.near_solution =
+      constraintViolation(problem, solution) <= options_.ipopt.near_solution_violation;
+  return run(problem, point, sigma_initial, wall_time_budget);
+}
+
 MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, double sigma_initial,
                              double wall_time_budget) {
   PrimalDualPoint point;
   point.x = previous.solution;
+  point.near_solution =
+      constraintViolation(problem, point.x) <= options_.ipopt.near_solution_violation;
   const NlpMultipliers& m = previous.multipliers;
   const size_t n = point.x.size();
   if (m.bound_lower.size() == n && m.bound_upper.size() == n &&

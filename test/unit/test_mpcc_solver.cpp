@@ -150,6 +150,60 @@ TEST(MpccSolver, WarmStartFromAProblemWithOtherRowsDropsItsMultipliers) {
   EXPECT_LE(report.complementarity_residual, 1e-9);
 }
 
+/// The solution (1, 0) of the corner and a row x <= 1 - depth it violates by `depth`, as a graze
+/// round adds a guard the plan cuts into.
+struct CutCorner {
+  CornerMpcc solved, cut;
+  fesd::MpccReport solution;
+  explicit CutCorner(double depth) {
+    solution = solved.solve();
+    const int row = cut.nlp.addRows(1, -fesd::NlpAssembly::kInfinity, 1.0 - depth);
+    cut.nlp.addLinear(row, {{cut.x, 1.0}});
+    cut.nlp.finalize();
+  }
+};
+
+TEST(MpccSolver, AStartNextToASolutionWithoutMultipliersStaysNextToIt) {
+  CutCorner corner(1e-4);
+  ASSERT_EQ(corner.solution.status, fesd::SolveStatus::kSuccess) << corner.solution.message;
+  fesd::MpccSolver solver;
+  const fesd::MpccReport near =
+      solver.solveNearSolution(corner.cut.nlp, corner.solution.solution, 1e-4, -1.0);
+  const fesd::MpccReport cold = solver.solve(corner.cut.nlp, corner.solution.solution, 1e-4);
+  for (const fesd::MpccReport* report : {&near, &cold}) {
+    ASSERT_EQ(report->status, fesd::SolveStatus::kSuccess) << report->message;
+    EXPECT_NEAR(report->solution[corner.cut.x], 1.0 - 1e-4, 1e-8);
+    EXPECT_NEAR(report->solution[corner.cut.y], 0.0, 1e-8);
+  }
+  // Ipopt's cold start re-centres the point (mu = 0.1, pushed 1e-2 off its bounds).
+  EXPECT_LT(near.iterations, cold.iterations) << near.iterations << " against " << cold.iterations;
+  // The same through a warm start's polishing (a graze round's branch NLP): a report without
+  // multipliers.
+  fesd::MpccReport plan;
+  plan.solution = corner.solution.solution;
+  plan.polish_sigma = corner.solution.polish_sigma;
+  const fesd::MpccReport polished = solver.solve(corner.cut.nlp, plan, 1e-4);
+  ASSERT_EQ(polished.status, fesd::SolveStatus::kSuccess) << polished.message;
+  EXPECT_TRUE(polished.polished);
+  // Inside the row by Ipopt's last mu over the row's multiplier (2e-4).
+  EXPECT_NEAR(polished.solution[corner.cut.x], 1.0 - 1e-4, 1e-6);
+  EXPECT_LT(polished.iterations, cold.iterations);
+}
+
+TEST(MpccSolver, AStartFarFromFeasibleIsStartedCold) {
+  // Cut by 0.5: far more than near_solution_violation, so Ipopt starts as from any guess.
+  CutCorner corner(0.5);
+  fesd::MpccSolver solver;
+  ASSERT_LT(solver.options().ipopt.near_solution_violation, 0.5);
+  const fesd::MpccReport near =
+      solver.solveNearSolution(corner.cut.nlp, corner.solution.solution, 1e-4, -1.0);
+  const fesd::MpccReport cold = solver.solve(corner.cut.nlp, corner.solution.solution, 1e-4);
+  ASSERT_EQ(near.status, fesd::SolveStatus::kSuccess) << near.message;
+  EXPECT_EQ(near.iterations, cold.iterations);
+  EXPECT_EQ(near.solution, cold.solution);
+  EXPECT_NEAR(near.solution[corner.cut.x], 0.5, 1e-8);
+}
+
 TEST(MpccSolver, ReportsInfeasibility) {
   CornerMpcc problem;
   const int row = problem.nlp.addRows(1, -fesd::NlpAssembly::kInfinity, -1.0);  // x + y <= -1

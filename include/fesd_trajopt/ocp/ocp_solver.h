@@ -93,7 +93,8 @@ class OcpSolver {
   /// kGuessAfterPrevious (a further fall back to the constant start stays kConstantAfterGuess).
   OcpSolution solve(const OcpSolution& previous, const TrajectoryGuess& fallback);
   /// From a trajectory on this grid (Discretization::guessFromTrajectory, e.g. the solution of
-  /// the same task with fewer contact pairs) as from a guess (OcpOptions::guess_sigma), and when
+  /// the same task with fewer contact pairs): the homotopy from OcpOptions::guess_sigma, Ipopt
+  /// starting next to it (MpccSolver::solveNearSolution), and when
   /// that fails (neither success nor interrupted) solve(fallback) within what is left of the
   /// budget; the report then holds both.
   OcpSolution solve(const Trajectory& trajectory, const TrajectoryGuess& fallback);

@@ -45,6 +45,15 @@ struct IpoptSettings {
   /// again: 11 -> 13). mu_init = 1e-7 cost more in every case.
   double previous_solution_mu = 1e-11;
   double previous_solution_bound_push = 1e-3;
+  /// Ipopt's mu_init and bound push (bound multipliers mu_init / slack) from a plan's primal point
+  /// alone (a graze round's, a lazy round's, a finer rung's): Ipopt's cold start re-centred it to
+  /// mu = 0.1 and walked back in 70-170 iterations (docs/results.md).
+  double near_solution_mu = 1e-9;
+  double near_solution_bound_push = 1e-6;
+  /// ... when the point violates the NLP's constraints by at most this; a point farther off (a
+  /// plan through the pairs a lazy round adds, a plan mapped to more stages) is started cold: at
+  /// mu_init 1e-9 Ipopt crept back to feasibility.
+  double near_solution_violation = 1e-3;
   /// Any further Ipopt option by name; the value's type (integer, number, text) is inferred.
   std::map<std::string, std::string> extra_options;
 };
@@ -284,6 +293,10 @@ class MpccSolver {
   /// `wall_time_budget` (seconds, if >= 0) replaces the options' budget for this call.
   MpccReport solve(RelaxedMpcc& problem, const std::vector<double>& initial_guess,
                    double sigma_initial = -1.0, double wall_time_budget = -1.0);
+  /// As solve(initial_guess), from a solution of a nearby problem without its multipliers (a plan
+  /// with pairs added): Ipopt starts next to it (IpoptSettings::near_solution_*).
+  MpccReport solveNearSolution(RelaxedMpcc& problem, const std::vector<double>& solution,
+                               double sigma_initial, double wall_time_budget);
   /// A warm start from a previous solution of the same problem, multipliers included: its
   /// active set polished first (IpoptSettings::previous_solution_*), then, if that fails, the
   /// homotopy from sigma_initial.
