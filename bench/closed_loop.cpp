@@ -31,6 +31,7 @@ int closedLoop(const Arguments& args) {
   fesd::ClosedLoopOptions options;
   options.replan_every = args.integer("every", 3);
   options.first = nodeDefaultOptions(args.number("budget", 60.0));
+  applyHomotopyArguments(args, options.first.ocp.homotopy);
   options.replan = options.first;
   options.replan.verify = false;                // the fastest answer
   options.plant.discretization.num_stages = 3;  // the verification's grid

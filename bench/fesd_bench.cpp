@@ -26,7 +26,7 @@ const std::map<std::string, Command>& commands() {
         "    open and closed loop, the replans' time over the first plan's, CSV.\n"
         "    --families=cluttered --first-seed=0 --scenes=12 --every=3 --budget=60 --horizon\n"
         "    --intervals --min-open-loop=0 (only scenes whose open loop misses by more)\n"
-        "    --replans (a line per replan)"}},
+        "    --replans (a line per replan) and the homotopy/Ipopt options of ocp-manipulation"}},
       {"derivatives",
        {fesd_bench::derivatives,
         "Cost of one model evaluation (value + Jacobian + Hessian): analytic vs Eigen AutoDiff.\n"
@@ -73,7 +73,7 @@ const std::map<std::string, Command>& commands() {
         "    --history (per relaxed NLP) --trajectory (per interval; switches)\n"
         "    homotopy: --sigma0 --kappa --max-steps --relaxed-tolerance-factor --ipopt-tol\n"
         "    --mu-strategy --cold-mu-strategy --ipopt-print-level --ipopt=name:value,...\n"
-        "    --near-solution-violation=1e-2 (< 0: a plan's point starts Ipopt cold)"}},
+        "    --near-solution-violation=1e-3 (< 0: a plan's point starts Ipopt cold)"}},
       {"ocp-accuracy",
        {fesd_bench::ocpAccuracy,
         "Showcase: terminal accuracy (fine FESD re-simulation of the optimal controls) vs CPU\n"

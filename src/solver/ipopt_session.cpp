@@ -4,9 +4,11 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <mutex>
 #include <stdexcept>
 
@@ -21,9 +23,6 @@ double steadySeconds() {
 }
 
 namespace {
-
-/// Ipopt's default bound_push, bound_frac and their slack versions, restored for a cold start.
-constexpr double kIpoptBoundPush = 1e-2;
 
 /// SCOTCH (MUMPS' ordering) runs multithreaded by default, and then its orderings, and with
 /// them the rounding of every factorization, differ from run to run; with one thread they are
@@ -275,8 +274,33 @@ std::mutex& mumpsLock() {
 
 }  // namespace
 
+double boundsAndRowsViolation(const NlpProblem& problem, const std::vector<double>& x) {
+  const int n = problem.numVariables(), m = problem.numConstraints();
+  if (static_cast<int>(x.size()) != n) return std::numeric_limits<double>::infinity();
+  std::vector<double> x_lower(n), x_upper(n), g_lower(m), g_upper(m), g(m);
+  double violation = 0.0;
+  try {
+    problem.getBounds(x_lower.data(), x_upper.data(), g_lower.data(), g_upper.data());
+    problem.constraints(x.data(), g.data());
+  } catch (const std::exception&) {
+    return std::numeric_limits<double>::infinity();
+  }
+  for (int i = 0; i < n; ++i)
+    violation = std::max({violation, x_lower[i] - x[i], x[i] - x_upper[i]});
+  for (int i = 0; i < m; ++i)
+    violation = std::max({violation, g_lower[i] - g[i], g[i] - g_upper[i]});
+  return std::isnan(violation) ? std::numeric_limits<double>::infinity() : violation;
+}
+
 IpoptSession::IpoptSession(const IpoptSettings& settings)
-    : settings_(settings), uses_mumps_(settings.linear_solver == "mumps") {
+    : settings_(settings),
+      uses_mumps_(settings.linear_solver == "mumps"),
+      cold_start_options_({{"mu_init", "0.1"},
+                           {"bound_push", "0.01"},
+                           {"bound_frac", "0.01"},
+                           {"slack_bound_push", "0.01"},
+                           {"slack_bound_frac", "0.01"},
+                           {"bound_mult_init_method", "constant"}}) {
   if (settings.linear_solver == kLdltSolver) registerLdltAsMa97();
   application_ = IpoptApplicationFactory();
   Ipopt::OptionsList& options = *application_->Options();
@@ -297,6 +321,7 @@ IpoptSession::IpoptSession(const IpoptSettings& settings)
   if (uses_mumps_) setMumpsOptions(options);
 
   for (const auto& [name, value] : settings.extra_options) {
+    if (cold_start_options_.count(name)) cold_start_options_[name] = value;
     if (!setOption(options, name, value)) {
       throw std::invalid_argument("Ipopt option '" + name + "' does not accept '" + value + "'");
     }
@@ -315,6 +340,7 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
                                           ? solve_settings.max_iterations
                                           : settings_.max_iterations);
   if (point.has_multipliers) {
+    // Ipopt's warm-start initialiser reads only the warm_start_* pushes: the cold ones may stay.
     options.SetStringValue("mu_strategy", settings_.mu_strategy);
     options.SetStringValue("warm_start_init_point", "yes");
     options.SetNumericValue("mu_init", solve_settings.warm_start_mu);
@@ -325,16 +351,19 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
                                         ? solve_settings.warm_start_bound_push
                                         : settings_.warm_start_bound_push);
     }
-  } else {
-    const bool near = point.near_solution;
-    options.SetStringValue("mu_strategy",
-                           near ? settings_.mu_strategy : settings_.cold_start_mu_strategy);
+  } else if (point.near_solution &&
+             boundsAndRowsViolation(problem, point.x) <= settings_.near_solution_violation) {
+    options.SetStringValue("mu_strategy", settings_.mu_strategy);
     options.SetStringValue("warm_start_init_point", "no");
-    options.SetNumericValue("mu_init", near ? settings_.near_solution_mu : 0.1);
+    options.SetNumericValue("mu_init", settings_.near_solution_mu);
     for (const char* name : {"bound_push", "bound_frac", "slack_bound_push", "slack_bound_frac"}) {
-      options.SetNumericValue(name, near ? settings_.near_solution_bound_push : kIpoptBoundPush);
+      options.SetNumericValue(name, settings_.near_solution_bound_push);
     }
-    options.SetStringValue("bound_mult_init_method", near ? "mu-based" : "constant");
+    options.SetStringValue("bound_mult_init_method", "mu-based");
+  } else {
+    options.SetStringValue("mu_strategy", settings_.cold_start_mu_strategy);
+    options.SetStringValue("warm_start_init_point", "no");
+    for (const auto& [name, value] : cold_start_options_) setOption(options, name, value);
   }
   const auto start = std::chrono::steady_clock::now();
   Ipopt::SmartPtr<TnlpAdapter> adapter =

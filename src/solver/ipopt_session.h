@@ -1,5 +1,6 @@
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -13,10 +14,14 @@ namespace fesd {
 struct PrimalDualPoint {
   std::vector<double> x, bound_lower_multipliers, bound_upper_multipliers, constraint_multipliers;
   bool has_multipliers = false;
-  /// Without multipliers: x solves a nearby NLP (the same plan with more rows, or re-gridded), so
-  /// Ipopt starts next to it (IpoptSettings::near_solution_*) instead of re-centring from afar.
+  /// Without multipliers: x solves a nearby NLP (the same plan with more rows, or re-gridded);
+  /// Ipopt starts next to it (IpoptSettings::near_solution_*) when it is that near this one.
   bool near_solution = false;
 };
+
+/// The largest violation of the NLP's bounds and rows at x; infinity when they cannot be
+/// evaluated.
+double boundsAndRowsViolation(const NlpProblem& problem, const std::vector<double>& x);
 
 /// What one Ipopt solve produced.
 struct NlpOutcome {
@@ -56,6 +61,9 @@ class IpoptSession {
  private:
   IpoptSettings settings_;
   bool uses_mumps_;
+  /// Ipopt's starting options of a cold start (its defaults, or the user's extra_options),
+  /// restored after a start next to a solution changed them.
+  std::map<std::string, std::string> cold_start_options_;
   Ipopt::SmartPtr<Ipopt::IpoptApplication> application_;
 };
 

@@ -120,25 +120,6 @@ double objectiveOrNaN(const NlpProblem& problem, const std::vector<double>& x) {
   }
 }
 
-/// Largest violation of the bounds and constraints at x; infinity when they cannot be evaluated.
-double constraintViolation(const NlpProblem& problem, const std::vector<double>& x) {
-  const int n = problem.numVariables(), m = problem.numConstraints();
-  if (static_cast<int>(x.size()) != n) return std::numeric_limits<double>::infinity();
-  std::vector<double> x_lower(n), x_upper(n), g_lower(m), g_upper(m), g(m);
-  double violation = 0.0;
-  try {
-    problem.getBounds(x_lower.data(), x_upper.data(), g_lower.data(), g_upper.data());
-    problem.constraints(x.data(), g.data());
-  } catch (const std::exception&) {
-    return std::numeric_limits<double>::infinity();
-  }
-  for (int i = 0; i < n; ++i)
-    violation = std::max({violation, x_lower[i] - x[i], x[i] - x_upper[i]});
-  for (int i = 0; i < m; ++i)
-    violation = std::max({violation, g_lower[i] - g[i], g[i] - g_upper[i]});
-  return std::isnan(violation) ? std::numeric_limits<double>::infinity() : violation;
-}
-
 /// Settings shared by every solve of one call: the deadline, the monitor's cancel flag, and
 /// Ipopt's obj_scaling_factor (fixed, or the objective at the guess brought to the target size).
 IpoptSession::SolveSettings initialSettings(const HomotopyOptions& options,
@@ -274,7 +255,7 @@ bool solvesAlready(const NlpProblem& problem, const PrimalDualPoint& point, doub
       static_cast<int>(point.bound_upper_multipliers.size()) != n) {
     return false;
   }
-  if (constraintViolation(problem, point.x) > tolerance) return false;
+  if (boundsAndRowsViolation(problem, point.x) > tolerance) return false;
   std::vector<double> x_lower(n), x_upper(n), g_lower(m), g_upper(m), g(m), gradient(n);
   problem.getBounds(x_lower.data(), x_upper.data(), g_lower.data(), g_upper.data());
   problem.constraints(point.x.data(), g.data());
@@ -418,8 +399,7 @@ MpccReport MpccSolver::solveNearSolution(RelaxedMpcc& problem, const std::vector
                                          double sigma_initial, double wall_time_budget) {
   PrimalDualPoint point;
   point.x = solution;
-  point.near_solution =
-      constraintViolation(problem, solution) <= options_.ipopt.near_solution_violation;
+  point.near_solution = true;
   return run(problem, point, sigma_initial, wall_time_budget);
 }
 
@@ -427,8 +407,6 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
                              double wall_time_budget) {
   PrimalDualPoint point;
   point.x = previous.solution;
-  point.near_solution =
-      constraintViolation(problem, point.x) <= options_.ipopt.near_solution_violation;
   const NlpMultipliers& m = previous.multipliers;
   const size_t n = point.x.size();
   if (m.bound_lower.size() == n && m.bound_upper.size() == n &&
@@ -437,6 +415,8 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
     point.bound_upper_multipliers = m.bound_upper;
     point.constraint_multipliers = m.constraints;
     point.has_multipliers = true;
+  } else {
+    point.near_solution = true;
   }
   // The previous active set first: one smooth NLP when the problem is (nearly) the same.
   if (options_.polish_active_set && problem.numComplementarities() > 0 &&
@@ -567,7 +547,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     if (sigma < options_.minimum_sigma) break;
   }
   if (interrupted(report.status) && !std::isfinite(best_residual) &&
-      constraintViolation(problem, start.x) < constraintViolation(problem, point.x)) {
+      boundsAndRowsViolation(problem, start.x) < boundsAndRowsViolation(problem, point.x)) {
     // Nothing converged: of the start and the interrupted iterate, the more feasible one (a
     // warm start's start is a previous solution, e.g. the fixed-grid stage's).
     best = start;

@@ -94,9 +94,9 @@ class OcpSolver {
   OcpSolution solve(const OcpSolution& previous, const TrajectoryGuess& fallback);
   /// From a trajectory on this grid (Discretization::guessFromTrajectory, e.g. the solution of
   /// the same task with fewer contact pairs): the homotopy from OcpOptions::guess_sigma, Ipopt
-  /// starting next to it (MpccSolver::solveNearSolution), and when
-  /// that fails (neither success nor interrupted) solve(fallback) within what is left of the
-  /// budget; the report then holds both.
+  /// starting next to it (MpccSolver::solveNearSolution), and when that fails (neither success
+  /// nor interrupted) solve(fallback) within what is left of the budget; the report then holds
+  /// both.
   OcpSolution solve(const Trajectory& trajectory, const TrajectoryGuess& fallback);
   /// From a plan on this grid that nearly solves this problem (a coarser rung's solution refined
   /// onto it, the round before with fewer pairs or without gap guards): its active set polished

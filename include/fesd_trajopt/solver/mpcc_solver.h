@@ -50,9 +50,9 @@ struct IpoptSettings {
   /// mu = 0.1 and walked back in 70-170 iterations (docs/results.md).
   double near_solution_mu = 1e-9;
   double near_solution_bound_push = 1e-6;
-  /// ... when the point violates the NLP's constraints by at most this; a point farther off (a
-  /// plan through the pairs a lazy round adds, a plan mapped to more stages) is started cold: at
-  /// mu_init 1e-9 Ipopt crept back to feasibility.
+  /// ... when the point violates the NLP's bounds and rows by at most this (< 0: never); a point
+  /// farther off (a plan through the pairs a lazy round adds, a plan mapped to more stages) is
+  /// started cold: at mu_init 1e-9 Ipopt crept back to feasibility.
   double near_solution_violation = 1e-3;
   /// Any further Ipopt option by name; the value's type (integer, number, text) is inferred.
   std::map<std::string, std::string> extra_options;
@@ -299,7 +299,8 @@ class MpccSolver {
                                double sigma_initial, double wall_time_budget);
   /// A warm start from a previous solution of the same problem, multipliers included: its
   /// active set polished first (IpoptSettings::previous_solution_*), then, if that fails, the
-  /// homotopy from sigma_initial.
+  /// homotopy from sigma_initial. Without its multipliers (a plan's point) Ipopt starts next to
+  /// it instead (IpoptSettings::near_solution_*).
   MpccReport solve(RelaxedMpcc& problem, const MpccReport& previous, double sigma_initial,
                    double wall_time_budget = -1.0);
 
