@@ -135,6 +135,26 @@ class RobotNodeTest(unittest.TestCase):
             self.assertTrue(low - 1e-9 <= q <= high + 1e-9, (q, low, high))
         self.assertGreater(max(shoulders) - min(shoulders), 1e-3)  # it moves
 
+    def test_the_arm_turns_a_bar_to_a_pose(self):
+        request = arm_push_request()
+        request.bodies[0] = BodySpec(
+            name="bar", add=True, turns=True, initial_position=Point(0.6, 0.0, 0.0),
+            sphere_offsets=[Point(-0.05, 0.0, 0.0), Point(0.05, 0.0, 0.0)],
+            sphere_radii=[0.04, 0.04], role=BodySpec.ROLE_PASSIVE, target=Point(0.6, 0.2, 0.0),
+            target_weight=100.0, target_yaw=0.3, target_yaw_weight=100.0)
+        start = time.time()
+        response = self.solve(request)
+        print("planar arm turns a bar through the node: status %d in %.2f s (%s)"
+              % (response.status, time.time() - start, response.message))
+        self.assertEqual(response.status, Solution.SUCCESS, response.message)
+        bar = response.solution.bodies[0]
+        self.assertLess(bar.target_distance, 1e-3)
+        self.assertLess(bar.target_yaw_distance, 1e-3)
+        self.assertEqual(len(bar.yaws), len(bar.positions))
+        self.assertAlmostEqual(bar.yaws[0], 0.0, places=12)
+        self.assertAlmostEqual(bar.yaws[-1], 0.3, delta=1e-3)
+        self.assertLess(response.solution.verification_error, 1e-3)
+
     def test_an_accuracy_target_refines_the_arms_plan(self):
         request = arm_push_request()
         request.target_accuracy = 1e-6

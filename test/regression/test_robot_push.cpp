@@ -50,6 +50,42 @@ TEST_P(RobotPush, PlanarArmPushesTheDiscToItsTarget) {
 
 INSTANTIATE_TEST_SUITE_P(LazyAndAll, RobotPush, ::testing::Bool());
 
+// The arm's disc as a bar of two spheres that turns (quasi-static pushing, the bar's own limit
+// surface): the arm pushes it to the disc's target and turns it by 0.3 rad, without penetration
+// at any element boundary, and the verification's re-simulation ends where the plan does.
+TEST(RobotPush, PlanarArmBringsATurningBarToAPose) {
+  fesd::Scene bar_scene(2);
+  fesd::SceneBody bar{"bar", 0.04, Eigen::Vector2d(0.6, 0.0)};
+  bar.spheres = {{"bar/sphere_0", Eigen::Vector3d(-0.05, 0.0, 0.0), 0.04},
+                 {"bar/sphere_1", Eigen::Vector3d(0.05, 0.0, 0.0), 0.04}};
+  fesd::turnAboutPressureCentre(bar, 0.0);
+  bar_scene.bodies().push_back(bar);
+  fesd::SceneTask task = fesd::taskOn(fesd::robotInScene(
+      std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf")),
+      Eigen::Vector3d(-0.6, 0.0, 0.0), bar_scene));
+  task.bodies[0].target = Eigen::Vector2d(0.6, 0.2);
+  task.bodies[0].target_weight = 100.0;
+  task.bodies[0].target_yaw = 0.3;
+  task.bodies[0].target_yaw_weight = 100.0;
+  task.horizon = 2.0;
+  task.num_intervals = 10;
+  const fesd::Stopwatch stopwatch;
+  const fesd::SceneOutcome outcome = fesd::solveSceneTask(task, {}, fesd_test::robotSolveOptions());
+  ASSERT_EQ(outcome.invalid, "");
+  ASSERT_EQ(outcome.status, fesd::SolveStatus::kSuccess) << outcome.message;
+  EXPECT_LT(outcome.target_distances[0], 1e-3);
+  EXPECT_LT(outcome.target_yaw_distances[0], 1e-3);
+  EXPECT_NEAR(task.scene.yaw(0, outcome.trajectory.finalState()), 0.3, 1e-3);
+  EXPECT_GT(outcome.boundary_gap, -1e-8);
+  EXPECT_LT(outcome.verification.error, 1e-3);
+  EXPECT_GT(outcome.verification.gap, -1e-6);
+  std::printf(
+      "planar arm turns a bar: %.2f s, %d Ipopt iterations, target %.2e, yaw %.2e, verification "
+      "error %.2e\n",
+      stopwatch.wallSeconds(), outcome.report.iterations, outcome.target_distances[0],
+      outcome.target_yaw_distances[0], outcome.verification.error);
+}
+
 }  // namespace
 
 namespace {

@@ -252,14 +252,26 @@ TEST(TaskWithARobot, ValidationNamesTheProblem) {
   SceneTask touching = fesd::taskOn(
       fesd::robotInScene(task.scene.robotPointer(), Eigen::Vector3d::Zero(), overlapping));
   EXPECT_EQ(fesd::validateTask(touching, limits), "disc/hand/sphere_1 overlap at the start");
-  // A turning body (the corner task's box, far from the arm): not in robot scenes yet.
+  // A turning body (the corner task's box, far from the arm) in a robot scene: its state is the
+  // joints', then its position and s = rho yaw.
   fesd::Scene with_box(2);
   with_box.bodies().push_back(fesd_test::boxIntoACorner().scene.bodies()[1]);
   with_box.bodies().back().position = Eigen::Vector2d(5.0, 5.0);
   const SceneTask turning = fesd::taskOn(
       fesd::robotInScene(task.scene.robotPointer(), Eigen::Vector3d::Zero(), with_box));
-  EXPECT_EQ(fesd::validateTask(turning, limits),
-            "body 'box' turns: bodies turn only in scenes without a robot (yet)");
+  EXPECT_EQ(fesd::validateTask(turning, limits), "");
+  EXPECT_EQ(turning.scene.stateSize(), 3 + 3);
+  // ... but not in a spatial one.
+  fesd::Scene spatial(3);
+  fesd::SceneBody bar{"bar", 0.05, Eigen::Vector3d(5.0, 5.0, 0.05)};
+  bar.spheres = {{"bar/sphere_0", Eigen::Vector3d(0.0, -0.05, 0.0), 0.05},
+                 {"bar/sphere_1", Eigen::Vector3d(0.0, 0.05, 0.0), 0.05}};
+  fesd::turnAboutPressureCentre(bar, 0.0);
+  spatial.bodies().push_back(bar);
+  const SceneTask turning_in_space =
+      fesd::taskOn(fesd::robotInScene(task.scene.robotPointer(), Eigen::Vector3d::Zero(), spatial));
+  EXPECT_EQ(fesd::validateTask(turning_in_space, limits),
+            "body 'bar' turns: bodies turn in planar robot scenes only (yet)");
 }
 
 TEST(TaskWithARobot, PairsBeyondReachArePruned) {
