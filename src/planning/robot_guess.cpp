@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <limits>
 
+#include <Eigen/Geometry>
+
 #include "fesd_trajopt/kinematics/forward_kinematics.h"
 #include "fesd_trajopt/kinematics/inverse_kinematics.h"
 #include "fesd_trajopt/planning/bounding_discs.h"
@@ -62,11 +64,13 @@ int touchedCollisionBody(const Scene& scene, int body, const PushPlan& plan) {
   const Eigen::VectorXd at = plan.guess.state(plan.contact_time);
   int nearest = candidates.front();
   double nearest_gap = std::numeric_limits<double>::infinity();
+  // The plan moves the body without turning it: its spheres stay at the start yaw.
+  const SceneBody& pushed = scene.bodies()[body];
   for (int c : candidates) {
     const CollisionBody& sphere = scene.collisionBodies()[c];
-    const double gap =
-        (at.segment(dim, dim) + sphere.centre.offset.head(dim) - at.head(dim)).norm() -
-        sphere.radius;
+    Eigen::VectorXd offset = sphere.centre.offset.head(dim);
+    if (pushed.turns) offset.head<2>() = Eigen::Rotation2Dd(pushed.yaw) * offset.head<2>();
+    const double gap = (at.segment(dim, dim) + offset - at.head(dim)).norm() - sphere.radius;
     if (gap < nearest_gap) {
       nearest = c;
       nearest_gap = gap;
@@ -104,7 +108,7 @@ int pushingSphere(const SceneTask& task, int pushed_body) {
   for (int s = 0; s < static_cast<int>(robot.spheres.size()); ++s) {
     if (robot.links[robot.spheres[s].link].joint != tool_joint) continue;
     const Eigen::Vector3d approach =
-        padded(body.position) - (body.radius + robot.spheres[s].radius) * direction;
+        padded(body.position) - (boundingRadius(body) + robot.spheres[s].radius) * direction;
     Eigen::Vector3d centre = data.sphere_centres[s];
     if (task.scene.dimension() == 2) centre.z() = 0.0;
     const double distance = (centre - approach).norm();

@@ -127,14 +127,13 @@ void addRobotMarkers(const fesd::SceneTask& task, const fesd_trajopt::Solution& 
     for (size_t s = 0; s < robot.spheres.size(); ++s) {
       sphere(ns, point(data.sphere_centres[s]), robot.spheres[s].radius, bodyColor(true, alpha));
     }
-    // A free body with several spheres: each where the body is at that boundary.
-    const std::vector<fesd::SceneBody>& free_bodies = task.scene.bodies();
-    for (size_t b = 0; b < free_bodies.size() && b < solution.bodies.size(); ++b) {
-      const auto& positions = solution.bodies[b].positions;
-      if (k >= positions.size()) continue;
-      const Eigen::Vector3d body(positions[k].x, positions[k].y, positions[k].z);
-      for (const fesd::FreeBodySphere& s : free_bodies[b].spheres) {
-        sphere(ns, point(body + s.offset), s.radius, bodyColor(false, alpha));
+    // A free body with several spheres: each where the body is at that boundary, turned by its
+    // yaw there.
+    for (size_t b = 0; b < task.scene.bodies().size() && b < solution.bodies.size(); ++b) {
+      const fesd_trajopt::BodyTrajectory& body = solution.bodies[b];
+      if (k >= body.positions.size() || task.scene.bodies()[b].spheres.empty()) continue;
+      for (const auto& [centre, radius] : bodySpheres(body, body.positions[k], yawAt(body, k))) {
+        sphere(ns, centre, radius, bodyColor(false, alpha));
       }
     }
   };

@@ -303,11 +303,18 @@ std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
   }
   for (const FreeLink& free :
        scene.hasRobot() ? scene.robot().free_links : std::vector<FreeLink>{}) {
-    if (std::none_of(scene.bodies().begin(), scene.bodies().end(),
-                     [&](const SceneBody& body) { return body.name == free.link; })) {
+    const auto stands_for =
+        std::find_if(scene.bodies().begin(), scene.bodies().end(),
+                     [&](const SceneBody& body) { return body.name == free.link; });
+    if (stands_for == scene.bodies().end()) {
       return "link '" + free.link +
              "' is on a planar or floating joint but no free body of the scene stands for it "
              "(robotForScene makes one)";
+    }
+    // Its answer is the robot's joints, which hold no yaw for it.
+    if (stands_for->turns) {
+      return "body '" + free.link +
+             "' is a free link of the robot's URDF: it translates (add a turning body instead)";
     }
   }
   if (static_cast<int>(task.joints.size()) != scene.numJoints()) {

@@ -126,6 +126,42 @@ TEST(TurningBodies, ABarPushedOffCentreTurnsAsTheProjectionPredicts) {
   EXPECT_NEAR(yaw, expected(4) / rho, 1e-6);
 }
 
+// The same push in a spatial scene, pusher and bar at a table's height: the bar turns about the
+// table's normal exactly as in the plane, and nothing leaves that height.
+TEST(TurningBodies, InASpatialSceneTheBarTurnsAboutTheTablesNormalAsInThePlane) {
+  const double d = 0.3, height = 0.25;
+  const std::vector<Eigen::Vector2d> offsets = {Eigen::Vector2d(0.0, -d), Eigen::Vector2d(0.0, d)};
+  const TurningScene planar = pushedBar(Eigen::Vector2d(-1.0, d), offsets);
+  fesd::SceneBody bar{"bar", kSphereRadius, Eigen::Vector3d(0.0, 0.0, height)};
+  for (size_t k = 0; k < offsets.size(); ++k) {
+    bar.spheres.push_back({"bar/sphere_" + std::to_string(k),
+                           Eigen::Vector3d(offsets[k].x(), offsets[k].y(), 0.0), kSphereRadius});
+  }
+  fesd::turnAboutPressureCentre(bar, 0.0);
+  fesd::Scene spatial(3);
+  spatial.bodies() = {{"pusher", kPusherRadius, Eigen::Vector3d(-1.0, d, height), true}, bar};
+  fesd::SimulationOptions options;
+  options.discretization.num_stages = 3;
+  options.discretization.num_elements = 2;
+  const fesd::SimulationResult in_space =
+      fesd::FesdIntegrator(spatial.model(planar.pairs), options)
+          .simulate(spatial.initialState(), 1.5, 15, {Eigen::Vector3d(kSpeed, 0.0, 0.0)});
+  const fesd::SimulationResult in_plane = simulate(planar, 1.5, 15);
+  ASSERT_EQ(in_space.status, fesd::SolveStatus::kSuccess) << in_space.message;
+  ASSERT_EQ(in_plane.status, fesd::SolveStatus::kSuccess) << in_plane.message;
+  ASSERT_FALSE(in_space.trajectory.switches.empty());
+  EXPECT_NEAR(in_space.trajectory.switches.front().time, in_plane.trajectory.switches.front().time,
+              1e-9);
+  const Eigen::VectorXd space = in_space.trajectory.finalState();
+  const Eigen::VectorXd plane = in_plane.trajectory.finalState();
+  EXPECT_LT((spatial.position(1, space).head<2>() - planar.scene.position(1, plane)).norm(), 1e-9);
+  EXPECT_LT((spatial.position(0, space).head<2>() - planar.scene.position(0, plane)).norm(), 1e-9);
+  EXPECT_NEAR(spatial.yaw(1, space), planar.scene.yaw(1, plane), 1e-9);
+  EXPECT_LT(spatial.yaw(1, space), -0.1);  // it did turn
+  EXPECT_NEAR(spatial.position(0, space).z(), height, 1e-12);
+  EXPECT_NEAR(spatial.position(1, space).z(), height, 1e-12);
+}
+
 // The same push through the middle sphere of a bar of three: no moment, no turn.
 TEST(TurningBodies, APushThroughTheCentreDoesNotTurn) {
   const double d = 0.45;

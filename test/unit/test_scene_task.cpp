@@ -390,6 +390,18 @@ TEST(TaskWithARobot, AFreeLinkNeedsAFreeBodyOfTheScene) {
   const fesd::SceneTask with_body =
       fesd::taskOn(fesd::robotInScene(robot, Eigen::VectorXd::Zero(1), discs));
   EXPECT_EQ(fesd::validateTask(with_body, {}), "");
+  // The link's body asked to turn: its answer (the robot's joints) has no yaw for it.
+  fesd::Scene turning(2);
+  fesd::SceneBody puck{"puck", 0.1, Eigen::Vector2d(1.0, 0.0)};
+  puck.spheres = {{"puck/sphere_0", Eigen::Vector3d(0.0, -0.1, 0.0), 0.1},
+                  {"puck/sphere_1", Eigen::Vector3d(0.0, 0.1, 0.0), 0.1}};
+  fesd::turnAboutPressureCentre(puck, 0.0);
+  turning.bodies().push_back(puck);
+  const fesd::SceneTask with_turning_body =
+      fesd::taskOn(fesd::robotInScene(robot, Eigen::VectorXd::Zero(1), turning));
+  EXPECT_EQ(fesd::validateTask(with_turning_body, {}),
+            "body 'puck' is a free link of the robot's URDF: it translates (add a turning body "
+            "instead)");
 }
 
 }  // namespace

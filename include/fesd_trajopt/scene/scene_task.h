@@ -96,8 +96,8 @@ struct TaskLimits {
 /// Checks a task for what it must not contain: non-finite numbers, radii <= 0, wrong
 /// dimensions, nothing actuated, pairs overlapping at the start, bounds that exclude the start,
 /// sizes beyond the limits (limits.max_spheres for a robot), a free link of the robot that no free
-/// body stands for (robotForScene makes them), workspace bounds in a robot scene. Returns "" or a
-/// message naming the problem.
+/// body stands for (robotForScene makes them) or one that turns, a turning body in a spatial
+/// robot scene, workspace bounds in a robot scene. Returns "" or a message naming the problem.
 std::string validateTask(const SceneTask& task, const TaskLimits& limits);
 
 /// Checks a valid task (validateTask) for goals it cannot meet: a target outside the body's
