@@ -4,17 +4,17 @@
 
 #include <dlfcn.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <limits>
 #include <mutex>
 #include <stdexcept>
 
 #include <coin/IpIpoptData.hpp>
 #include <coin/IpSolveStatistics.hpp>
 #include <coin/IpTNLP.hpp>
+
+#include "fesd_trajopt/solver/square_newton.h"
 
 namespace fesd {
 
@@ -274,24 +274,6 @@ std::mutex& mumpsLock() {
 
 }  // namespace
 
-double boundsAndRowsViolation(const NlpProblem& problem, const std::vector<double>& x) {
-  const int n = problem.numVariables(), m = problem.numConstraints();
-  if (static_cast<int>(x.size()) != n) return std::numeric_limits<double>::infinity();
-  std::vector<double> x_lower(n), x_upper(n), g_lower(m), g_upper(m), g(m);
-  double violation = 0.0;
-  try {
-    problem.getBounds(x_lower.data(), x_upper.data(), g_lower.data(), g_upper.data());
-    problem.constraints(x.data(), g.data());
-  } catch (const std::exception&) {
-    return std::numeric_limits<double>::infinity();
-  }
-  for (int i = 0; i < n; ++i)
-    violation = std::max({violation, x_lower[i] - x[i], x[i] - x_upper[i]});
-  for (int i = 0; i < m; ++i)
-    violation = std::max({violation, g_lower[i] - g[i], g[i] - g_upper[i]});
-  return std::isnan(violation) ? std::numeric_limits<double>::infinity() : violation;
-}
-
 IpoptSession::IpoptSession(const IpoptSettings& settings)
     : settings_(settings),
       uses_mumps_(settings.linear_solver == "mumps"),
@@ -352,7 +334,7 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
                                         : settings_.warm_start_bound_push);
     }
   } else if (point.near_solution &&
-             boundsAndRowsViolation(problem, point.x) <= settings_.near_solution_violation) {
+             constraintViolation(problem, point.x) <= settings_.near_solution_violation) {
     options.SetStringValue("mu_strategy", settings_.mu_strategy);
     options.SetStringValue("warm_start_init_point", "no");
     options.SetNumericValue("mu_init", settings_.near_solution_mu);

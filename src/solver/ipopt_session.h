@@ -19,10 +19,6 @@ struct PrimalDualPoint {
   bool near_solution = false;
 };
 
-/// The largest violation of the NLP's bounds and rows at x; infinity when they cannot be
-/// evaluated.
-double boundsAndRowsViolation(const NlpProblem& problem, const std::vector<double>& x);
-
 /// What one Ipopt solve produced.
 struct NlpOutcome {
   Ipopt::ApplicationReturnStatus status;

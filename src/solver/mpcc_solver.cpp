@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "fesd_trajopt/solver/lpec.h"
+#include "fesd_trajopt/solver/square_newton.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 #include "ipopt_session.h"
 
@@ -255,7 +256,7 @@ bool solvesAlready(const NlpProblem& problem, const PrimalDualPoint& point, doub
       static_cast<int>(point.bound_upper_multipliers.size()) != n) {
     return false;
   }
-  if (boundsAndRowsViolation(problem, point.x) > tolerance) return false;
+  if (constraintViolation(problem, point.x) > tolerance) return false;
   std::vector<double> x_lower(n), x_upper(n), g_lower(m), g_upper(m), g(m), gradient(n);
   problem.getBounds(x_lower.data(), x_upper.data(), g_lower.data(), g_upper.data());
   problem.constraints(point.x.data(), g.data());
@@ -547,7 +548,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     if (sigma < options_.minimum_sigma) break;
   }
   if (interrupted(report.status) && !std::isfinite(best_residual) &&
-      boundsAndRowsViolation(problem, start.x) < boundsAndRowsViolation(problem, point.x)) {
+      constraintViolation(problem, start.x) < constraintViolation(problem, point.x)) {
     // Nothing converged: of the start and the interrupted iterate, the more feasible one (a
     // warm start's start is a previous solution, e.g. the fixed-grid stage's).
     best = start;

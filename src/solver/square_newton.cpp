@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 
 namespace fesd {
@@ -287,9 +288,14 @@ NewtonResult solveSquareSystem(const NlpProblem& nlp, std::vector<double>& x,
 double constraintViolation(const NlpProblem& nlp, const std::vector<double>& x,
                            const std::vector<int>& skipped_rows) {
   const int n = nlp.numVariables(), m = nlp.numConstraints();
+  if (static_cast<int>(x.size()) != n) return std::numeric_limits<double>::infinity();
   std::vector<double> x_lower(n), x_upper(n), g_lower(m), g_upper(m), g(m);
-  nlp.getBounds(x_lower.data(), x_upper.data(), g_lower.data(), g_upper.data());
-  nlp.constraints(x.data(), g.data());
+  try {
+    nlp.getBounds(x_lower.data(), x_upper.data(), g_lower.data(), g_upper.data());
+    nlp.constraints(x.data(), g.data());
+  } catch (const std::exception&) {
+    return std::numeric_limits<double>::infinity();
+  }
   double violation = 0.0;
   auto outside = [](double value, double lower, double upper) {
     return std::max({lower - value, value - upper, 0.0});
@@ -300,7 +306,7 @@ double constraintViolation(const NlpProblem& nlp, const std::vector<double>& x,
     if (std::count(skipped_rows.begin(), skipped_rows.end(), row)) continue;
     violation = std::max(violation, outside(g[row], g_lower[row], g_upper[row]));
   }
-  return violation;
+  return std::isnan(violation) ? std::numeric_limits<double>::infinity() : violation;
 }
 
 }  // namespace fesd

@@ -126,7 +126,7 @@ NewtonResult solveSquareSystem(const NlpProblem& nlp, std::vector<double>& x,
                                const NewtonOptions& options = {});
 
 /// The largest violation at x of the NLP's variable bounds and rows but `skipped_rows` (0 when x
-/// is feasible).
+/// is feasible; infinity when they cannot be evaluated or are not finite).
 double constraintViolation(const NlpProblem& nlp, const std::vector<double>& x,
                            const std::vector<int>& skipped_rows = {});
 
