@@ -36,6 +36,10 @@ fesd::SceneSolveOptions nodeDefaultOptions(double budget) {
   return options;
 }
 
+void applyLengthScaling(const Arguments& args, fesd::SceneSolveOptions& options) {
+  options.length_scaling = args.flag("length-scaling", options.length_scaling);
+}
+
 double timeDefaultScene(const fesd::SceneSolveOptions& options, double accuracy) {
   fesd::SceneOutcome reference;
   std::vector<double> runs;

@@ -3,6 +3,7 @@
 #include <memory>
 #include <string>
 
+#include "bench_args.h"
 #include "fesd_trajopt/kinematics/kinematic_model.h"
 #include "fesd_trajopt/planning/scene_solver.h"
 #include "fesd_trajopt/scene/scene_task.h"
@@ -17,6 +18,10 @@ fesd::SceneTask showcaseWithRocks(int intervals, int rocks);
 /// lazy pairs with margin 0.1, verified on n_s = 3, N_FE = 6) within `budget` seconds; its
 /// accuracy target is 1e-2 (solveToAccuracy).
 fesd::SceneSolveOptions nodeDefaultOptions(double budget);
+
+/// --length-scaling=true|false: solve in units of the task's length scale (the default) or in
+/// its own units as given (SceneSolveOptions::length_scaling).
+void applyLengthScaling(const Arguments& args, fesd::SceneSolveOptions& options);
 
 /// The node's default request of the default scene with `options` up the ladder to `accuracy`,
 /// three times (the first pays for what a node pays once: analyses, caches): prints a "#" line

@@ -25,5 +25,6 @@ int kktSolvers(const Arguments& args);
 int robotPush(const Arguments& args);
 int mpccMethods(const Arguments& args);
 int pushT(const Arguments& args);
+int scaleSweep(const Arguments& args);
 
 }  // namespace fesd_bench

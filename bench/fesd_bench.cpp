@@ -80,13 +80,21 @@ const std::map<std::string, Command>& commands() {
         "    time, CSV. --intervals=30 --stages=1,2,3,4 --elements=1,2,3,4\n"
         "    --methods=fesd,standard --budget=120 (s per solve) --reference-stages=4\n"
         "    --reference-elements=8 --start=plan|constant (first guess)"}},
+      {"scale-sweep",
+       {fesd_bench::scaleSweep,
+        "The default scene with every length times k (radii, positions, targets, bounds, speeds)\n"
+        "    through the node's default request: status, iterations, seconds and the ratio to\n"
+        "    k = 1's, first contact, objective / k^2 and the plan's deviation from k = 1's, CSV.\n"
+        "    --factors=0.003,0.01,0.03,0.1,0.25,1,4,10,100 --budget=120 --accuracy=1e-2\n"
+        "    --length-scaling=true and the homotopy/Ipopt options of ocp-manipulation"}},
       {"robot-push",
        {fesd_bench::robotPush,
         "A shipped robot push (examples/robot_scenes.h) after the showcase: status, wall time and\n"
         "    ratio, Ipopt iterations per homotopy step, pairs, NLP size, target distance, gaps,\n"
         "    contact and release times per pair. --robot=panda|planar_arm --pairs=lazy|all\n"
         "    --intervals --horizon --elements --stages --budget=150 --margin --verify=true\n"
-        "    --showcase=true and the homotopy/Ipopt options of ocp-manipulation"}},
+        "    --showcase=true --accuracy=0 (> 0: the accuracy ladder to it, as the node does)\n"
+        "    --length-scaling=true and the homotopy/Ipopt options of ocp-manipulation"}},
       {"mpcc-methods",
        {fesd_bench::mpccMethods,
         "The homotopy and the active-set method (LPECs, branch NLPs) on the node's default\n"

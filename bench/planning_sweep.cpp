@@ -49,6 +49,7 @@ int nodeDefaultSweep(const Arguments& args, const std::vector<std::string>& fami
   fesd::SceneSolveOptions options = nodeDefaultOptions(args.number("budget", 120.0));
   options.first_round_margin = args.number("first-margin", options.first_round_margin);
   applyHomotopyArguments(args, options.ocp.homotopy);
+  applyLengthScaling(args, options);
   const double accuracy = args.number("accuracy", 1e-2);
   const double horizon = args.number("horizon", 0.0);
   const int intervals = args.integer("intervals", 0);

@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "fesd_trajopt/examples/robot_scenes.h"
 #include "fesd_trajopt/ocp/ocp_solver.h"
+#include "fesd_trajopt/planning/accuracy_ladder.h"
 #include "fesd_trajopt/planning/scene_solver.h"
 #include "fesd_trajopt/solver/kkt_capture.h"
 #include "fesd_trajopt/solver/stopwatch.h"
@@ -41,7 +42,11 @@ int robotPush(const Arguments& args) {
   options.pair_margin = args.number("margin", options.pair_margin);
   options.verify = args.flag("verify", true);
   applyHomotopyArguments(args, options.ocp.homotopy);
+  applyLengthScaling(args, options);
   const bool with_showcase = args.flag("showcase", true);
+  // > 0: the node's default request (the accuracy ladder to this target, in units of the
+  // scene's length scale; of the task's own with --length-scaling=false).
+  const double accuracy = args.number("accuracy", 0.0);
   args.rejectUnused();
   if (pairs != "lazy" && pairs != "all") throw std::invalid_argument("--pairs=lazy|all");
 
@@ -53,7 +58,9 @@ int robotPush(const Arguments& args) {
 
   fesd::Stopwatch stopwatch;
   fesd::KktCapture capture;
-  const fesd::SceneOutcome outcome = fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
+  const fesd::SceneOutcome outcome =
+      accuracy > 0.0 ? fesd::solveToAccuracy(task, fesd::TaskLimits{}, options, accuracy)
+                     : fesd::solveSceneTask(task, fesd::TaskLimits{}, options);
   const double seconds = stopwatch.wallSeconds();
   const fesd::KktCapture::Totals kkt = capture.totals();
   if (!outcome.invalid.empty()) {

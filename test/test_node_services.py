@@ -165,6 +165,40 @@ class NodeServices(unittest.TestCase):
                 self.assertTrue(all(p.x >= 2.5 - 1e-6 for p in b.positions))
         self.assertEqual(len(response.solution.times), len(response.solution.step_lengths) + 1)
 
+    def test_the_default_scene_at_desk_size_is_the_same_plan_in_metres(self):
+        """Every length of the default scene times 0.01 (a 4 cm disc pushed 10 cm), given in the
+        request: solved in units of its length scale, the same plan scaled, answered in metres."""
+        k = 0.01
+        request = PlanRequest()
+        request.urdf = '<robot name="empty"><link name="world"/></robot>'
+        inf = float("inf")
+        request.bodies = [
+            body("actuator_1", add=True, radius=1.0 * k, initial_position=Point(-10 * k, 10 * k, 0),
+                 role=BodySpec.ROLE_ACTUATED, max_speed=10.0 * k, target=Point(-10 * k, 0, 0),
+                 target_weight=1.0, workspace_lower=[-inf, -inf], workspace_upper=[-2.5 * k, inf]),
+            body("actuator_2", add=True, radius=1.0 * k, initial_position=Point(5 * k, -5 * k, 0),
+                 role=BodySpec.ROLE_ACTUATED, max_speed=10.0 * k, target=Point(10 * k, 0, 0),
+                 target_weight=1.0, workspace_lower=[2.5 * k, -inf], workspace_upper=[inf, inf]),
+            body("object", add=True, radius=2.0 * k, initial_position=Point(0, 0, 0),
+                 target=Point(0, 10 * k, 0), target_weight=1000.0)]
+        desk = self.solve(request)
+        self.assertEqual(desk.status, SUCCESS, desk.message)
+        statistics = desk.solution.statistics
+        self.assertAlmostEqual(statistics.length_scale, k, delta=1e-15)
+        reference = self.default
+        self.assertEqual(statistics.ipopt_iterations, reference.solution.statistics.ipopt_iterations)
+        self.assertAlmostEqual(statistics.objective / k ** 2, reference.solution.statistics.objective,
+                               delta=1e-9 * reference.solution.statistics.objective)
+        contacts = [e.time for e in desk.solution.switches]
+        self.assertEqual(len(contacts), len(reference.solution.switches))
+        for mine, theirs in zip(contacts, [e.time for e in reference.solution.switches]):
+            self.assertAlmostEqual(mine, theirs, delta=1e-9)
+        final = {b.name: b.positions[-1] for b in desk.solution.bodies}
+        self.assertLess(math.hypot(final["object"].x, final["object"].y - 10 * k), 1e-3 * k)
+        self.assertAlmostEqual(desk.solution.verification_error,
+                               k * reference.solution.verification_error,
+                               delta=1e-6 * k * reference.solution.verification_error)
+
     def test_custom_scene_given_in_the_message(self):
         request = PlanRequest()
         request.urdf = '<robot name="empty"><link name="world"/></robot>'

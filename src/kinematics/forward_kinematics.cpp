@@ -23,10 +23,11 @@ void forwardKinematics(const KinematicModel& model, const Eigen::VectorXd& q, Ki
   for (int j = 0; j < nq; ++j) {
     const KinematicJoint& joint = model.joints[j];
     Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+    const double moved = joint.coordinate_scale * q(j);
     if (joint.type == JointType::kPrismatic) {
-      motion.translation() = q(j) * joint.axis;
+      motion.translation() = moved * joint.axis;
     } else {
-      motion.linear() = Eigen::AngleAxisd(q(j), joint.axis).toRotationMatrix();
+      motion.linear() = Eigen::AngleAxisd(moved, joint.axis).toRotationMatrix();
     }
     const Eigen::Isometry3d above =
         joint.parent < 0 ? Eigen::Isometry3d::Identity() : data.joint_frames[joint.parent];
@@ -50,7 +51,7 @@ Eigen::Isometry3d linkFrame(const KinematicModel& model, const KinematicData& da
 Eigen::Vector3d sphereJacobianColumn(const KinematicModel& model, const KinematicData& data,
                                      int sphere, int joint) {
   if (!onChain(model, sphere, joint)) return Eigen::Vector3d::Zero();
-  const Eigen::Vector3d& axis = data.joint_axes[joint];
+  const Eigen::Vector3d axis = model.joints[joint].coordinate_scale * data.joint_axes[joint];
   if (isPrismatic(model, joint)) return axis;
   return axis.cross(data.sphere_centres[sphere] - data.joint_frames[joint].translation());
 }

@@ -70,7 +70,10 @@ InverseKinematicsResult sphereInverseKinematics(const KinematicModel& model, int
     bool progressed = false;
     for (int increase = 0; increase <= kDampingIncreases && !progressed; ++increase) {
       Eigen::VectorXd step = stepWithinLimits(model, result.q, jacobian, error, damping);
-      const double largest = step.lpNorm<Eigen::Infinity>();
+      double largest = 0.0;  // the joints' motion (coordinate_scale per unit)
+      for (int j = 0; j < step.size(); ++j) {
+        largest = std::max(largest, std::abs(model.joints[j].coordinate_scale * step(j)));
+      }
       if (largest > options.max_step) step *= options.max_step / largest;
       const Eigen::VectorXd candidate = clampToLimits(model, result.q + step);
       forwardKinematics(model, candidate, data);

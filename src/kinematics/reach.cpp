@@ -17,7 +17,7 @@ double leverArmBound(const KinematicModel& model, int sphere, int joint) {
     const KinematicJoint& next = model.joints[*below];
     bound += next.origin.translation().norm();
     if (next.type == JointType::kPrismatic) {
-      bound += std::max(std::abs(next.lower), std::abs(next.upper));
+      bound += next.coordinate_scale * std::max(std::abs(next.lower), std::abs(next.upper));
     }
   }
   return bound;
@@ -27,8 +27,10 @@ double sphereReachBound(const KinematicModel& model, int sphere, const Eigen::Ve
                         double horizon) {
   double bound = 0.0;
   for (int j : model.chainOf(sphere)) {
+    const KinematicJoint& joint = model.joints[j];
     const double speed_per_unit =
-        model.joints[j].type == JointType::kPrismatic ? 1.0 : leverArmBound(model, sphere, j);
+        joint.coordinate_scale *
+        (joint.type == JointType::kPrismatic ? 1.0 : leverArmBound(model, sphere, j));
     bound += std::abs(velocities(j)) * horizon * speed_per_unit;
   }
   return bound;

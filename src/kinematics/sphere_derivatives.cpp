@@ -14,7 +14,9 @@ void SphereDerivatives::compute(const KinematicModel& model, const KinematicData
   for (int a = 0; a < size_; ++a) {
     const int joint = chain[a];
     const bool prismatic = model.joints[joint].type == JointType::kPrismatic;
-    turning_axes_[a] = prismatic ? Eigen::Vector3d::Zero() : data.joint_axes[joint];
+    turning_axes_[a] =
+        prismatic ? Eigen::Vector3d::Zero()
+                  : Eigen::Vector3d(model.joints[joint].coordinate_scale * data.joint_axes[joint]);
     jacobian_.col(a) = sphereJacobianColumn(model, data, sphere, joint);
   }
   for (int a = 0; a < size_; ++a) {

@@ -2,6 +2,8 @@
 // what the verification blames in the plan the rung before found.
 #include "fesd_trajopt/planning/accuracy_ladder.h"
 
+#include "fesd_trajopt/planning/length_units.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -79,7 +81,7 @@ SolveStatus AccuracyLadder::finalStatus(SolveStatus best) const {
 
 std::string AccuracyLadder::summary() const {
   std::ostringstream message;
-  message << "accuracy target " << target_;
+  message << "accuracy target " << length_unit_ * target_;
   const AccuracyRung& best = rungs_[best_];
   const auto [fewest, most] =
       std::minmax_element(best.interval_elements.begin(), best.interval_elements.end());
@@ -88,11 +90,11 @@ std::string AccuracyLadder::summary() const {
   if (*most != *fewest) grid << "-" << *most;
   if (met_) {
     message << " met on rung " << rungs_.size() << " (" << grid.str() << "): verification error "
-            << best.verification_error;
+            << length_unit_ * best.verification_error;
   } else if (cancelled_) {
     message << " not met: cancelled on rung " << rungs_.size();
   } else {
-    message << " not met: best verification error " << best.verification_error;
+    message << " not met: best verification error " << length_unit_ * best.verification_error;
     if (best.grazes > 0) message << " with " << best.grazes << " graze(s) left";
     message << " (rung " << best_ + 1 << " of " << rungs_.size() << ", "
             << (out_of_time_ ? "the wall-time budget spent" : "the ladder ended") << ")";
@@ -156,7 +158,8 @@ RungChange nextRung(const SceneTask& task, const SceneOutcome& outcome, int stag
   std::string refinement;
   if (!refined.empty()) {
     refinement = "more elements in intervals " + intervalList(refined);
-    reason << also << "error up to " << blamed_error << " at switches inside elements";
+    reason << also << "error up to " << task.scene.userLength(blamed_error)
+           << " at switches inside elements";
   }
   if ((!smooth.empty() || failed) && stages < limits.max_stages) {
     next.stages = stages + 1;
@@ -165,8 +168,9 @@ RungChange nextRung(const SceneTask& task, const SceneOutcome& outcome, int stag
     if (failed) {
       reason << also << "the verification failed";
     } else {
-      reason << (refined.empty() ? also : std::string("; ")) << "error up to " << blamed_error
-             << " in smooth intervals " << intervalList(smooth);
+      reason << (refined.empty() ? also : std::string("; ")) << "error up to "
+             << task.scene.userLength(blamed_error) << " in smooth intervals "
+             << intervalList(smooth);
     }
     refined.insert(refined.end(), smooth.begin(), smooth.end());
   } else if (!smooth.empty()) {
@@ -174,8 +178,8 @@ RungChange nextRung(const SceneTask& task, const SceneOutcome& outcome, int stag
     if (!more.empty()) {
       refinement += (refinement.empty() ? "" : "; ") + std::string("more elements in intervals ") +
                     intervalList(more);
-      reason << (refined.empty() ? also : std::string("; ")) << "error up to " << blamed_error
-             << " in smooth intervals at n_s = " << stages;
+      reason << (refined.empty() ? also : std::string("; ")) << "error up to "
+             << task.scene.userLength(blamed_error) << " in smooth intervals at n_s = " << stages;
       refined.insert(refined.end(), more.begin(), more.end());
     }
   }
@@ -194,6 +198,12 @@ RungChange nextRung(const SceneTask& task, const SceneOutcome& outcome, int stag
 
 SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
                              SceneSolveOptions options, double target_accuracy) {
+  if (options.length_scaling) {
+    return solveInLengthUnits(task, limits, options,
+                              [&](const SceneTask& scaled, const SceneSolveOptions& inner) {
+                                return solveToAccuracy(scaled, limits, inner, target_accuracy);
+                              });
+  }
   options.verify = true;
   const SceneOutcome* previous = options.previous;
   DiscretizationOptions& grid = options.ocp.discretization;
@@ -203,7 +213,8 @@ SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
   if (grid.interval_elements.empty()) {
     grid.interval_elements.assign(task.num_intervals, grid.num_elements);
   }
-  AccuracyLadder ladder(target_accuracy, options.ocp.homotopy.wall_time_budget);
+  AccuracyLadder ladder(target_accuracy, options.ocp.homotopy.wall_time_budget,
+                        task.scene.length_unit);
   SceneOutcome best, last;
   RungChange change;
   for (int rung = 0;; ++rung) {

@@ -144,7 +144,8 @@ double largestGain(const std::vector<Eigen::MatrixXd>& transitions,
 
 /// An open-loop re-simulation of a plan's controls from its start.
 struct OpenLoop {
-  Trajectory trajectory;  ///< of the full scene; empty when it failed
+  Trajectory trajectory;           ///< of the full scene; empty when it failed
+  std::vector<ContactPair> pairs;  ///< of its multipliers' rows
   double error = std::numeric_limits<double>::infinity();
 };
 
@@ -166,6 +167,7 @@ OpenLoop openLoop(const SceneTask& task, const Trajectory& plan,
                       plan.controls, &reference);
     if (result.status != SolveStatus::kSuccess) break;
     open.trajectory = fullSceneTrajectory(task, part, result.trajectory);
+    open.pairs = part.modelled_in_task;
     grew = modelPairsThatCameNear(task.scene, {densePath(open.trajectory)}, margin, decisions);
     if (!grew) open.error = (open.trajectory.finalState() - plan.finalState()).norm();
   }
@@ -217,8 +219,8 @@ std::string describeGrazes(const Scene& scene, const std::vector<Graze>& grazes)
   for (size_t i = 0; i < grazes.size() && i < 3; ++i) {
     const Graze& g = grazes[i];
     text << (i ? "; " : "") << scene.pairName(g.pair) << " at t = " << g.time << " ("
-         << (g.touched ? "touched in the re-simulation, " : "") << "the plan's gap " << g.depth
-         << ")";
+         << (g.touched ? "touched in the re-simulation, " : "") << "the plan's gap "
+         << scene.userLength(g.depth) << ")";
   }
   if (grazes.size() > 3) text << "; ...";
   return text.str();
@@ -333,6 +335,7 @@ Verification verifyPlan(const SceneTask& task, const Trajectory& plan,
             [](const Graze& a, const Graze& b) { return a.time < b.time; });
   const OpenLoop open = open_loop.get();
   verification.open_loop = open.trajectory;
+  verification.open_loop_pairs = open.pairs;
   verification.open_loop_error = open.error;
   verification.seconds = stopwatch.wallSeconds();
   return verification;

@@ -8,11 +8,13 @@
 
 #include "fesd_trajopt/discretization/butcher_tableau.h"
 #include "fesd_trajopt/discretization/refined_trajectory.h"
+#include "fesd_trajopt/planning/length_units.h"
 #include "fesd_trajopt/planning/push_plan.h"
 #include "fesd_trajopt/planning/robot_guess.h"
 #include "fesd_trajopt/scene/lazy_pairs.h"
 #include "fesd_trajopt/scene/moving_part.h"
 #include "fesd_trajopt/scene/pair_check.h"
+#include "fesd_trajopt/scene/scene_units.h"
 #include "fesd_trajopt/solver/memory_estimate.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 
@@ -52,7 +54,7 @@ PlanStructure planStructure(const SceneTask& task, const SceneOutcome& outcome,
     if (decision.modelled) pairs.push_back(task.scene.pairName(decision.pair));
   }
   return planStructure(std::move(moving), std::move(pairs), task.horizon, task.num_intervals,
-                       discretization);
+                       discretization, task.scene.length_unit);
 }
 
 /// The pairs of the decisions that are modelled, in their order.
@@ -178,11 +180,13 @@ SceneTask reachableTask(const SceneTask& task, const FirstGuess& guess) {
 
 /// Each body's and joint's distance from its target at the end; a successful outcome that misses
 /// one by more than targetTolerance is kTargetNotReached, its message naming every target missed
-/// (and why, for the pushes the first guess found short).
+/// (and why, for the pushes the first guess found short). Positions are judged in the scene's
+/// units (relative to its length scale), angles in radians with the user's weights.
 void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const FirstGuess& guess) {
   const Scene& scene = task.scene;
   const Eigen::VectorXd end = outcome.trajectory.finalState();
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double unit = scene.length_unit;
   std::ostringstream missed;
   missed.precision(3);
   outcome.joint_target_distances.assign(scene.numJoints(), nan);
@@ -190,9 +194,10 @@ void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const FirstGuess
     const JointTask& t = task.joints[j];
     if (!(t.target_weight > 0.0)) continue;
     outcome.joint_target_distances[j] = std::fabs(end(j) - t.target);
-    if (outcome.joint_target_distances[j] > targetTolerance(t.target_weight)) {
+    const double joint_distance = scene.userLength(outcome.joint_target_distances[j]);
+    if (joint_distance > targetTolerance(t.target_weight)) {
       missed << (missed.tellp() > 0 ? "; " : "") << "joint '" << scene.robot().joints[j].name
-             << "' ends " << outcome.joint_target_distances[j] << " from its target";
+             << "' ends " << joint_distance << " from its target";
     }
   }
   outcome.target_distances.assign(scene.bodies().size(), nan);
@@ -201,11 +206,12 @@ void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const FirstGuess
     const BodyTask& t = task.bodies[b];
     if (t.hasYawTarget()) {
       const double distance = std::fabs(scene.yaw(static_cast<int>(b), end) - t.target_yaw);
+      const double tolerance = targetTolerance(t.target_yaw_weight * unit * unit);
       outcome.target_yaw_distances[b] = distance;
-      if (distance > targetTolerance(t.target_yaw_weight)) {
+      if (distance > tolerance) {
         missed << (missed.tellp() > 0 ? "; " : "") << "body '" << scene.bodies()[b].name
                << "' ends " << distance << " rad from its target yaw (" << t.target_yaw
-               << "), tolerance " << targetTolerance(t.target_yaw_weight);
+               << "), tolerance " << tolerance;
       }
     }
     if (!t.hasTarget()) continue;
@@ -213,8 +219,8 @@ void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const FirstGuess
     outcome.target_distances[b] = distance;
     if (distance <= targetTolerance(t.target_weight)) continue;
     missed << (missed.tellp() > 0 ? "; " : "") << "body '" << scene.bodies()[b].name << "' ends "
-           << distance << " from its target (" << t.target.transpose() << "), tolerance "
-           << targetTolerance(t.target_weight);
+           << scene.userLength(distance) << " from its target (" << (unit * t.target).transpose()
+           << "), tolerance " << scene.userLength(targetTolerance(t.target_weight));
     for (const PushPlan::ShortPush& push : guess.short_pushes) {
       if (push.body != static_cast<int>(b)) continue;
       missed << (push.time_limited
@@ -222,7 +228,7 @@ void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const FirstGuess
                        "planned as far towards it as time allows, ("
                      : " (out of the pushers' reach: workspace bounds, obstacles or walls; planned "
                        "to the nearest end they can push it to, (")
-             << push.end.transpose() << "))";
+             << (unit * push.end).transpose() << "))";
     }
   }
   if (outcome.status == SolveStatus::kSuccess && missed.tellp() > 0) {
@@ -262,14 +268,16 @@ bool measureGaps(const SceneTask& task, const SceneSolveOptions& options, int ro
         withinMargin(task.scene, decision.pair, decision.min_distance, options.pair_margin);
     if ((outcome.status == SolveStatus::kSuccess && near) ||
         (!interrupted(outcome.status) && decision.min_distance < 0.0)) {
-      reason << "modelled from round " << round + 1 << ": came within " << decision.min_distance
-             << " in round " << round;
+      reason << "modelled from round " << round + 1 << ": came within "
+             << task.scene.userLength(decision.min_distance) << " in round " << round;
       decision.modelled = true;
       decision.checked = false;
       added.push_back(task.scene.pairName(decision.pair));
     } else {
-      reason << "checked on the solution: never closer than " << decision.min_distance
-             << " (margin " << options.pair_margin * task.scene.pairSize(decision.pair) << ")";
+      reason << "checked on the solution: never closer than "
+             << task.scene.userLength(decision.min_distance) << " (margin "
+             << task.scene.userLength(options.pair_margin * task.scene.pairSize(decision.pair))
+             << ")";
     }
     decision.reason = reason.str();
   }
@@ -367,6 +375,12 @@ std::string warmStartRefusal(const SceneOutcome& previous, const SceneOutcome& n
 
 SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
                             const SceneSolveOptions& options) {
+  if (options.length_scaling) {
+    return solveInLengthUnits(task, limits, options,
+                              [&](const SceneTask& scaled, const SceneSolveOptions& inner) {
+                                return solveSceneTask(scaled, limits, inner);
+                              });
+  }
   Stopwatch stopwatch;
   SceneOutcome outcome;
   if (!prepare(task, limits, true, outcome)) return outcome;
@@ -612,19 +626,26 @@ SceneOutcome simulateSceneTask(SceneTask task, const std::vector<Eigen::VectorXd
     task.joints[j].max_velocity = speed;
   }
   if (!prepare(task, limits, false, outcome)) return outcome;
-  const MovingPart part = movingPartOf(task, outcome);
+  // In units of the scene's length scale, as a solve (solveInLengthUnits).
+  const double length = lengthScale(task);
+  const SceneTask scaled = taskInLengthUnits(task, length);
+  std::vector<Eigen::VectorXd> scaled_controls;
+  for (const Eigen::VectorXd& u : controls) scaled_controls.push_back(u / length);
+  const MovingPart part = movingPartOf(scaled, outcome);
   const Scene& moving = part.task.scene;
   FesdIntegrator integrator(moving.model(part.modelled), options);
   const SimulationResult result =
-      integrator.simulate(moving.initialState(), task.horizon, steps, controls);
+      integrator.simulate(moving.initialState(), task.horizon, steps, scaled_controls);
   outcome.modelled = part.modelled_in_task;
   outcome.status = result.status;
   outcome.message = result.message;
-  outcome.trajectory = fullSceneTrajectory(task, part, result.trajectory);
+  outcome.trajectory = fullSceneTrajectory(scaled, part, result.trajectory);
   outcome.report = result.totals;
   if (options.sensitivities) {
-    outcome.sensitivities = fullSceneSensitivities(task, part, result.sensitivities);
+    outcome.sensitivities = fullSceneSensitivities(scaled, part, result.sensitivities);
   }
+  scaleOutcome(outcome, length);
+  outcome.length_scale = length;
   return outcome;
 }
 

@@ -300,6 +300,7 @@ fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task, const fesd::Sc
   fesd_trajopt::Solution solution;
   fillCommon(trajectory, report, solution);
   solution.statistics.guess_residual = outcome.guess_residual;  // NaN: no first guess
+  solution.statistics.length_scale = outcome.length_scale;
   for (int b = 0; b < static_cast<int>(scene.bodies().size()); ++b) {
     solution.bodies.push_back(bodyTrajectory(scene, b, outcome));
   }

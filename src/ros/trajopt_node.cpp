@@ -10,6 +10,7 @@
 #include "builtin_systems.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/planning/accuracy_ladder.h"
+#include "fesd_trajopt/scene/scene_units.h"
 #include "fesd_trajopt/solver/heap_policy.h"
 #include "fesd_trajopt/solver/stopwatch.h"
 #include "scene_request.h"
@@ -42,11 +43,14 @@ Discretization discretization(const Request& request, const NodeConfig& config) 
   return d;
 }
 
-/// The accuracy a plan request asks for: its own (> 0), the configured default (0), or none
-/// (< 0, or a default of 0): then 0.
-double targetAccuracy(const fesd_trajopt::PlanRequest& request, const NodeConfig& config) {
+/// The accuracy a plan request asks for, in units of the scene's length scale (as the ladder
+/// takes it): its own (> 0, in the scene's units), the configured default (0, relative already),
+/// or none (< 0, or a default of 0): then 0.
+double targetAccuracy(const fesd_trajopt::PlanRequest& request, const NodeConfig& config,
+                      double length_scale) {
   if (request.target_accuracy < 0.0) return 0.0;
-  return request.target_accuracy > 0.0 ? request.target_accuracy : config.target_accuracy;
+  return request.target_accuracy > 0.0 ? request.target_accuracy / length_scale
+                                       : config.target_accuracy;
 }
 
 /// The wall-time budget of a request: its own where given, else the configuration's.
@@ -299,7 +303,8 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
     fesd::startOnPreviousRung(previous->structure, task.num_intervals, task.horizon,
                               options.ocp.discretization);
   }
-  const double accuracy = targetAccuracy(request, config_);
+  const double length_scale = fesd::lengthScale(task);
+  const double accuracy = targetAccuracy(request, config_, length_scale);
   const fesd::SceneOutcome outcome =
       accuracy > 0.0 ? fesd::solveToAccuracy(task, config_.limits, options, accuracy)
                      : fesd::solveSceneTask(task, config_.limits, options);
@@ -330,7 +335,7 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
   solution.statistics.nlp_variables = outcome.sizes.variables;
   solution.statistics.nlp_constraints = outcome.sizes.constraints;
   solution.statistics.complementarity_constraints = outcome.sizes.complementarities;
-  fillAccuracy(task.scene, outcome, accuracy, solution);
+  fillAccuracy(task.scene, outcome, accuracy * length_scale, solution);
   if (solution.needs_feedback) {
     std::ostringstream feedback;
     feedback.precision(3);

@@ -27,7 +27,7 @@ PairSelection pairsTheGuessNeeds(const Scene& scene, double horizon,
     if (pressed[k]) {
       reason << "in contact in the first guess";
     } else if (close) {
-      reason << "within the margin in the first guess (gap " << gaps[k] << ")";
+      reason << "within the margin in the first guess (gap " << scene.userLength(gaps[k]) << ")";
     }
     selection.modelled.push_back(pressed[k] || close);
     selection.reasons.push_back(reason.str());

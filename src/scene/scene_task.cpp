@@ -439,7 +439,7 @@ std::vector<PairDecision> decidePairs(const SceneTask& task) {
     if (separation > 0.0) {
       decisions.push_back({pair, false,
                            "cannot touch within the horizon: reachable sets stay " +
-                               formatNumber(separation) + " apart"});
+                               formatNumber(task.scene.userLength(separation)) + " apart"});
     } else {
       decisions.push_back({pair, true, "can touch within the horizon"});
     }

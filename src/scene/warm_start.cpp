@@ -26,8 +26,9 @@ std::string joined(const std::vector<std::string>& items) {
 
 PlanStructure planStructure(std::vector<std::string> moving_bodies,
                             std::vector<std::string> modelled_pairs, double horizon, int intervals,
-                            const DiscretizationOptions& discretization) {
+                            const DiscretizationOptions& discretization, double length_unit) {
   PlanStructure structure;
+  structure.length_unit = length_unit;
   structure.moving_bodies = std::move(moving_bodies);
   structure.modelled_pairs = std::move(modelled_pairs);
   structure.horizon = horizon;
@@ -56,6 +57,9 @@ std::string movingBodyName(const SceneBody& body) {
 }
 
 std::string warmStartMismatch(const PlanStructure& previous, const PlanStructure& now) {
+  if (previous.length_unit != now.length_unit) {
+    return difference("the scenes' length scales", previous.length_unit, now.length_unit);
+  }
   if (previous.moving_bodies != now.moving_bodies) {
     return difference("the moving bodies", joined(previous.moving_bodies),
                       joined(now.moving_bodies));

@@ -16,6 +16,7 @@
 #include "fesd_trajopt/planning/accuracy_ladder.h"
 #include "fesd_trajopt/planning/closed_loop.h"
 #include "fesd_trajopt/planning/scene_solver.h"
+#include "fesd_trajopt/scene/scene_units.h"
 #include "fesd_trajopt/solver/lpec.h"
 #include "support/corner_mpcc.h"
 #include "support/hard_cases.h"
@@ -67,7 +68,8 @@ double lpecValueAtACorner() {
 
 /// Hard cases through Ipopt at every step (no active-set Newton), the showcase scene up the
 /// accuracy ladder with its verifications, a push executed with feedback, the showcase by the
-/// active-set method with its LPECs, and a turning box pushed into a corner, all with our LDL^T.
+/// active-set method with its LPECs, the showcase at desk size, and a turning box pushed into a
+/// corner, all with our LDL^T.
 std::uint64_t probeDigest() {
   Digest digest;
   fesd::SimulationOptions options = hard_cases::fesdOptions(2, 2);
@@ -121,6 +123,13 @@ std::uint64_t probeDigest() {
   digest.add(certified.report.iterations);
   digest.add(certified.report.lpec_value);
   digest.add(lpecValueAtACorner());
+  // The showcase at desk size (a 2 cm pusher): solved in units of its length scale, answered in
+  // metres.
+  const fesd::SceneOutcome desk = fesd::solveSceneTask(
+      fesd::scaledTask(fesd::manipulation_example::task(30), 0.01), fesd::TaskLimits{}, ladder);
+  EXPECT_EQ(desk.status, fesd::SolveStatus::kSuccess) << desk.message;
+  digest.add(desk.trajectory);
+  digest.add(desk.report.objective);
   // A box that turns, pushed into a corner (pair model of turning spheres, the bounding-disc
   // guess), verified.
   fesd::SceneSolveOptions turning = fesd_test::nodeGridOptions();

@@ -59,7 +59,8 @@ TEST_P(PostScenes, GoRoundThePostsInLegsReachTheTargetAndVerify) {
   // A post on the line: the plan goes round it in legs joined by turns.
   ASSERT_EQ(run.outcome.planned_legs.size(), 1u) << scene.description;
   EXPECT_FALSE(run.outcome.planned_legs[0].through.empty()) << scene.description;
-  EXPECT_LT(run.outcome.guess_residual, 0.3) << scene.description;
+  // In the solve's units, where the pusher's radius (0.5) is 1.
+  EXPECT_LT(run.outcome.guess_residual, 0.6) << scene.description;
   expectReachedAndVerified(scene, run);
 }
 

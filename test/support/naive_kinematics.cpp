@@ -14,6 +14,12 @@ bool isPrismatic(const fesd::KinematicModel& model, int joint) {
   return model.joints[joint].type == fesd::JointType::kPrismatic;
 }
 
+/// The world axis of joint i times its turn per unit of its coordinate.
+Eigen::Vector3d turningAxis(const fesd::KinematicModel& model, const fesd::KinematicData& data,
+                            int i) {
+  return model.joints[i].coordinate_scale * data.joint_axes[i];
+}
+
 void sortThree(int& i, int& j, int& k) {
   if (i > j) std::swap(i, j);
   if (j > k) std::swap(j, k);
@@ -28,7 +34,7 @@ Eigen::Vector3d sphereSecondDerivative(const fesd::KinematicModel& model,
                                        const fesd::KinematicData& data, int sphere, int i, int j) {
   if (i > j) std::swap(i, j);
   if (!onChain(model, sphere, i) || isPrismatic(model, i)) return Eigen::Vector3d::Zero();
-  return data.joint_axes[i].cross(fesd::sphereJacobianColumn(model, data, sphere, j));
+  return turningAxis(model, data, i).cross(fesd::sphereJacobianColumn(model, data, sphere, j));
 }
 
 // Differentiating a_j x col_k along i <= j <= k turns a_j and col_k alike (Jacobi identity).
@@ -39,7 +45,7 @@ Eigen::Vector3d sphereThirdDerivative(const fesd::KinematicModel& model,
   if (!onChain(model, sphere, i) || isPrismatic(model, i) || isPrismatic(model, j)) {
     return Eigen::Vector3d::Zero();
   }
-  return data.joint_axes[i].cross(sphereSecondDerivative(model, data, sphere, j, k));
+  return turningAxis(model, data, i).cross(sphereSecondDerivative(model, data, sphere, j, k));
 }
 
 Eigen::MatrixXd weightedSphereHessian(const fesd::KinematicModel& model,

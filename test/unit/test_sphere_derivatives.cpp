@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "fesd_trajopt/kinematics/model_units.h"
 #include "support/finite_differences.h"
 #include "support/naive_kinematics.h"
 #include "support/robot_files.h"
@@ -19,12 +20,16 @@ namespace {
 
 using fesd::KinematicModel;
 
-/// A shipped robot's model, or the robot with every joint kind ("mixed").
+/// A shipped robot's model, or the robot with every joint kind ("mixed"); "<name>@L": in units
+/// of L (inLengthUnits: its joints turn L radians per unit).
 KinematicModel robot(const std::string& name) {
+  const size_t at = name.find('@');
+  const std::string file = name.substr(0, at);
   fesd::KinematicModelResult built = fesd::buildKinematicModel(
-      name == "mixed" ? fesd_test::mixedJointsUrdf() : fesd_test::readRobotFile(name));
+      file == "mixed" ? fesd_test::mixedJointsUrdf() : fesd_test::readRobotFile(file));
   EXPECT_EQ(built.error, "");
-  return std::move(built.model);
+  if (at == std::string::npos) return std::move(built.model);
+  return fesd::inLengthUnits(built.model, std::stod(name.substr(at + 1)));
 }
 
 class SphereDerivativesOnRobots : public ::testing::TestWithParam<std::string> {};
@@ -145,6 +150,7 @@ TEST_P(SphereDerivativesOnRobots, MatchCentralDifferences) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Kinematics, SphereDerivativesOnRobots,
-                         ::testing::Values("planar_arm.urdf", "panda_spherized.urdf", "mixed"));
+                         ::testing::Values("planar_arm.urdf", "panda_spherized.urdf", "mixed",
+                                           "panda_spherized.urdf@0.5", "mixed@3"));
 
 }  // namespace

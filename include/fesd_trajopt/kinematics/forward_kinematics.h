@@ -22,8 +22,8 @@ void forwardKinematics(const KinematicModel& model, const Eigen::VectorXd& q, Ki
 Eigen::Isometry3d linkFrame(const KinematicModel& model, const KinematicData& data, int link);
 
 /// dp_s/dq_j (exact, from data of forwardKinematics): a_j x (p_s - o_j) for a revolute joint, a_j
-/// for a prismatic one, zero for a joint off the sphere's chain (KinematicModel::chainOf). Second
-/// and third derivatives: SphereDerivatives.
+/// for a prismatic one, zero for a joint off the sphere's chain (KinematicModel::chainOf); a_j
+/// times the joint's coordinate_scale. Second and third derivatives: SphereDerivatives.
 Eigen::Vector3d sphereJacobianColumn(const KinematicModel& model, const KinematicData& data,
                                      int sphere, int joint);
 /// The 3 x nq Jacobian dp_s/dq.

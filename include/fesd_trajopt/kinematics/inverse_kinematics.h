@@ -9,8 +9,10 @@
 namespace fesd {
 
 struct InverseKinematicsOptions {
-  double damping = 1e-2;     ///< mu in J^T (J J^T + mu^2 I)^-1 dp
-  double max_step = 0.2;     ///< largest change of one coordinate per iteration
+  double damping = 1e-2;  ///< mu in J^T (J J^T + mu^2 I)^-1 dp
+  /// Largest motion of one joint per iteration (radians or model lengths: the coordinate's change
+  /// times its coordinate_scale).
+  double max_step = 0.2;
   double tolerance = 1e-10;  ///< distance to the target that counts as reached
   int max_iterations = 500;
   /// A stall: an iteration that shortens the distance by less than this fraction of it.

@@ -23,6 +23,10 @@ struct KinematicJoint {
   std::vector<int> chain;  ///< the moving joints from the root down to this one, inclusive
   double lower, upper;     ///< position limits; +-infinity for continuous joints
   double max_velocity;     ///< the URDF's velocity limit; 0 when it gives none
+  /// The joint's motion per unit of its coordinate: radians (revolute) or model lengths
+  /// (prismatic). 1 as read from a URDF; a model in a solve's units (model_units.h) turns a
+  /// revolute joint by L radians per unit, so that every coordinate is a length in units of L.
+  double coordinate_scale = 1.0;
 };
 
 /// A link of the kinematic tree: rigidly attached to the moved frame of a joint (or the world).

@@ -13,7 +13,8 @@ double leverArmBound(const KinematicModel& model, int sphere, int joint);
 
 /// An upper bound on how far a sphere centre can move within `horizon` when each coordinate j
 /// moves no faster than velocities(j): sum_j velocities(j) horizon times the lever-arm bound
-/// (revolute and continuous) or 1 (prismatic). The robot's own motion only; a push adds to it.
+/// (revolute and continuous) or 1 (prismatic), times the joint's coordinate_scale. The robot's
+/// own motion only; a push adds to it.
 double sphereReachBound(const KinematicModel& model, int sphere, const Eigen::VectorXd& velocities,
                         double horizon);
 

@@ -36,8 +36,8 @@ class SphereDerivatives {
   int size_ = 0;
   Eigen::Matrix3Xd jacobian_;
   std::vector<Eigen::Vector3d> second_;  ///< size x size, row-major, both triangles
-  /// Each joint's axis in the world for a revolute joint, zero for a prismatic one (which only
-  /// translates: no column below it turns).
+  /// Each joint's axis in the world times its coordinate_scale for a revolute joint, zero for a
+  /// prismatic one (which only translates: no column below it turns).
   std::vector<Eigen::Vector3d> turning_axes_;
 };
 

@@ -13,11 +13,12 @@ namespace fesd {
 
 /// The bookkeeping of a ladder: which rung is the best, when to stop, and the answer's status
 /// and message. A rung meets the target when it solved its NLP, its verification error is at
-/// most the target and its plan cuts into no body between stage points.
+/// most the target and its plan cuts into no body between stage points. Errors and the target
+/// are in the solve's length units; the summary prints them times `length_unit` (the user's).
 class AccuracyLadder {
  public:
-  AccuracyLadder(double target_accuracy, double budget)
-      : target_(target_accuracy), budget_(budget) {}
+  AccuracyLadder(double target_accuracy, double budget, double length_unit = 1.0)
+      : target_(target_accuracy), budget_(budget), length_unit_(length_unit) {}
 
   double remainingBudget() const;
   /// Records a rung (error infinite when unverified or failed); true when its outcome is the
@@ -37,7 +38,7 @@ class AccuracyLadder {
  private:
   bool meets(const AccuracyRung& rung) const;
 
-  double target_, budget_;
+  double target_, budget_, length_unit_;
   Stopwatch stopwatch_;
   std::vector<AccuracyRung> rungs_;
   int best_ = -1;

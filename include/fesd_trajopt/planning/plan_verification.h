@@ -47,7 +47,8 @@ struct Verification {
   /// Why the gain leaves out intervals (from the first one whose derivatives are undefined on,
   /// counted back from the end); "" when all are in.
   std::string gain_note;
-  Trajectory open_loop;  ///< of the full scene
+  Trajectory open_loop;                      ///< of the full scene
+  std::vector<ContactPair> open_loop_pairs;  ///< the pairs of its multipliers' rows
   /// The smallest gap of every pair in reach at the element boundaries of the interval
   /// re-simulations (negative: penetration).
   double gap = std::numeric_limits<double>::quiet_NaN();

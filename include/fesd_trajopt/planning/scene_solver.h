@@ -80,6 +80,9 @@ struct SceneOutcome {
   std::vector<double> target_yaw_distances;
   /// Per joint: |q_j(T) - target| (NaN without a target).
   std::vector<double> joint_target_distances;
+  /// The length the task was solved in (lengthScale, in the task's units; 1 when solved in its
+  /// units as given): the report's residuals and tolerances are of the problem in those units.
+  double length_scale = 1.0;
   /// The first guess's residual in the NLP's equations (NlpAssembly::equalityResidual at its
   /// point on the first round's grid): how far it is from dynamics consistent with its contacts.
   /// NaN when the solve started from a previous solution (and its guess was not needed).
@@ -100,7 +103,14 @@ struct SceneOutcome {
 /// not a successful solve, warmStartMismatch, or other NLP sizes; "" when it can.
 std::string warmStartRefusal(const SceneOutcome& previous, const SceneOutcome& now);
 
+/// Options of a scene solve. Their lengths (graze depth, accuracy targets) and tolerances are in
+/// units of the task's length scale (lengthScale) unless length_scaling is off; margins are
+/// relative to a pair's size.
 struct SceneSolveOptions {
+  /// Solve in units of the task's lengthScale and answer in the task's (solveInLengthUnits): a
+  /// scene and its copy in other units are one NLP, whose constants were tuned at that scale.
+  /// false: in the task's units as given (as before; for comparisons).
+  bool length_scaling = true;
   OcpOptions ocp;           ///< discretisation and homotopy (its wall-time budget covers all)
   bool prune_pairs = true;  ///< model only the pairs that can touch (decidePairs); else all
   /// Lazy pairs: of the pairs in reach, model first only those the first guess calls for

@@ -130,6 +130,11 @@ class Scene {
   bool self_collision = false;
   /// Link pairs that never collide (an SRDF's disable_collisions), either order.
   std::vector<std::pair<std::string, std::string>> disabled_link_pairs;
+  /// How long one length unit of this scene is in its user's units: 1 for a user's scene, the
+  /// length scale for the scene a solve sees (taskInLengthUnits). Messages print lengths in the
+  /// user's units (userLength).
+  double length_unit = 1.0;
+  double userLength(double length) const { return length * length_unit; }
 
   int stateSize() const;
   int controlSize() const;

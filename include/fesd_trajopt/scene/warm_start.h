@@ -23,6 +23,8 @@ struct PlanStructure {
   int intervals = 0, stages = 0;
   std::vector<int> interval_elements;  ///< elements per control interval
   bool switch_detection = true;
+  /// The length unit of the solve (Scene::length_unit): its NLP's point is in it.
+  double length_unit = 1.0;
 
   int largestElements() const;  ///< the most elements of any interval (0 without intervals)
 };
@@ -30,7 +32,7 @@ struct PlanStructure {
 /// A structure of these moving bodies and modelled pairs (names), on this grid.
 PlanStructure planStructure(std::vector<std::string> moving_bodies,
                             std::vector<std::string> modelled_pairs, double horizon, int intervals,
-                            const DiscretizationOptions& discretization);
+                            const DiscretizationOptions& discretization, double length_unit = 1.0);
 
 /// A free body as PlanStructure::moving_bodies names it: "name (radius r, actuated|passive)".
 std::string movingBodyName(const SceneBody& body);
