@@ -1,5 +1,7 @@
 #include "fesd_trajopt/kinematics/model_units.h"
 
+#include "fesd_trajopt/kinematics/reach.h"
+
 namespace fesd {
 namespace {
 
@@ -34,13 +36,14 @@ KinematicModel withLengthsScaled(const KinematicModel& model, double factor) {
 }
 
 KinematicModel inLengthUnits(const KinematicModel& model, double length_scale) {
+  const double radians_per_unit = length_scale / robotReach(model);
   KinematicModel scaled = withLengthsScaled(model, 1.0 / length_scale);
   for (KinematicJoint& joint : scaled.joints) {
     if (joint.type == JointType::kPrismatic) continue;
-    joint.lower /= length_scale;
-    joint.upper /= length_scale;
-    joint.max_velocity /= length_scale;
-    joint.coordinate_scale *= length_scale;
+    joint.lower /= radians_per_unit;
+    joint.upper /= radians_per_unit;
+    joint.max_velocity /= radians_per_unit;
+    joint.coordinate_scale *= radians_per_unit;
   }
   return scaled;
 }

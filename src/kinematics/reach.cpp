@@ -36,4 +36,17 @@ double sphereReachBound(const KinematicModel& model, int sphere, const Eigen::Ve
   return bound;
 }
 
+double robotReach(const KinematicModel& model) {
+  double reach = 0.0;
+  for (int s = 0; s < static_cast<int>(model.spheres.size()); ++s) {
+    if (model.spheres[s].link < 0) continue;
+    for (int j : model.chainOf(s)) {
+      const KinematicJoint& joint = model.joints[j];
+      if (joint.type == JointType::kPrismatic) continue;
+      reach = std::max(reach, joint.coordinate_scale * leverArmBound(model, s, j));
+    }
+  }
+  return reach > 0.0 ? reach : 1.0;
+}
+
 }  // namespace fesd

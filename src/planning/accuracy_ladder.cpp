@@ -199,7 +199,7 @@ RungChange nextRung(const SceneTask& task, const SceneOutcome& outcome, int stag
 SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
                              SceneSolveOptions options, double target_accuracy) {
   if (options.length_scaling) {
-    return solveInLengthUnits(task, limits, options,
+    return solveInLengthUnits(task, options,
                               [&](const SceneTask& scaled, const SceneSolveOptions& inner) {
                                 return solveToAccuracy(scaled, limits, inner, target_accuracy);
                               });

@@ -11,6 +11,7 @@
 #include "fesd_trajopt/planning/length_units.h"
 #include "fesd_trajopt/planning/push_plan.h"
 #include "fesd_trajopt/planning/robot_guess.h"
+#include "fesd_trajopt/planning/support_check.h"
 #include "fesd_trajopt/scene/lazy_pairs.h"
 #include "fesd_trajopt/scene/moving_part.h"
 #include "fesd_trajopt/scene/pair_check.h"
@@ -49,7 +50,9 @@ PlanStructure planStructure(const SceneTask& task, const SceneOutcome& outcome,
   for (int j = 0; j < task.scene.numJoints(); ++j) {
     moving.push_back("joint " + task.scene.robot().joints[j].name);
   }
-  for (int b : outcome.moving_bodies) moving.push_back(movingBodyName(task.scene.bodies()[b]));
+  for (int b : outcome.moving_bodies) {
+    moving.push_back(movingBodyName(task.scene.bodies()[b], task.scene.length_unit));
+  }
   for (const PairDecision& decision : outcome.decisions) {
     if (decision.modelled) pairs.push_back(task.scene.pairName(decision.pair));
   }
@@ -194,8 +197,15 @@ void judgeTargets(const SceneTask& task, SceneOutcome& outcome, const FirstGuess
     const JointTask& t = task.joints[j];
     if (!(t.target_weight > 0.0)) continue;
     outcome.joint_target_distances[j] = std::fabs(end(j) - t.target);
-    const double joint_distance = scene.userLength(outcome.joint_target_distances[j]);
-    if (joint_distance > targetTolerance(t.target_weight)) {
+    // A revolute joint in radians with the user's weight (the solve's is that times
+    // (its unit / length_unit)^2), a prismatic one as a length (relative to the length scale).
+    const double joint_unit = scene.jointUnit(j);
+    const double joint_distance = joint_unit * outcome.joint_target_distances[j];
+    const double tolerance =
+        scene.robot().joints[j].type == JointType::kPrismatic
+            ? scene.userLength(targetTolerance(t.target_weight))
+            : targetTolerance(t.target_weight * unit * unit / (joint_unit * joint_unit));
+    if (joint_distance > tolerance) {
       missed << (missed.tellp() > 0 ? "; " : "") << "joint '" << scene.robot().joints[j].name
              << "' ends " << joint_distance << " from its target";
     }
@@ -365,6 +375,58 @@ std::vector<GapGuard> gapGuards(const SceneTask& task, const MovingPart& part,
   return guards;
 }
 
+/// The task with the supports an earlier solve released (a finer rung's, a replan's) released,
+/// and those bodies in `released`.
+SceneTask withReleasedSupports(const SceneTask& task, const SceneSolveOptions& options,
+                               std::vector<int>& released) {
+  SceneTask floating = task;
+  for (const SceneOutcome* earlier : {options.refine, options.previous}) {
+    if (earlier == nullptr) continue;
+    for (int b : earlier->released_supports) {
+      if (b >= static_cast<int>(floating.scene.bodies().size())) continue;
+      floating.scene.bodies()[b].support = SupportMode::kNone;
+      if (std::find(released.begin(), released.end(), b) == released.end()) released.push_back(b);
+    }
+  }
+  return floating;
+}
+
+/// After a successful round: the supported bodies whose plan would lift them off their support
+/// float from the next round (in `tasks`), their pairs with that wall modelled; true when there
+/// is one.
+bool releasePullingSupports(std::vector<SceneTask*> tasks, int round, SceneOutcome& outcome,
+                            std::string& rounds_note) {
+  const SceneTask& task = *tasks.front();
+  const Scene& scene = task.scene;
+  const std::vector<double> lifts = supportLifts(task, outcome.trajectory, outcome.modelled);
+  bool released = false;
+  for (int b = 0; b < static_cast<int>(lifts.size()); ++b) {
+    const int wall = scene.supportOf(b);
+    if (wall < 0 || !(lifts[b] > kSupportLiftTolerance * boundingRadius(scene.bodies()[b]))) {
+      continue;
+    }
+    std::ostringstream note;
+    note.precision(3);
+    note << "; a push of round " << round << " would lift '" << scene.bodies()[b].name << "' off '"
+         << scene.walls()[wall].name << "' by " << scene.userLength(lifts[b])
+         << " (a push from below its centre, which the support cannot hold down): it floats from "
+            "round "
+         << round + 1 << ", its pairs with '" << scene.walls()[wall].name << "' modelled";
+    rounds_note += note.str();
+    for (int c : scene.freeBodyCollisionBodies(b)) {
+      outcome.decisions.push_back({{c, ContactPair::Kind::kWall, wall},
+                                   true,
+                                   "modelled from round " + std::to_string(round + 1) +
+                                       ": the plan of round " + std::to_string(round) +
+                                       " would lift the body off its support"});
+    }
+    for (SceneTask* t : tasks) t->scene.bodies()[b].support = SupportMode::kNone;
+    outcome.released_supports.push_back(b);
+    released = true;
+  }
+  return released;
+}
+
 }  // namespace
 
 std::string warmStartRefusal(const SceneOutcome& previous, const SceneOutcome& now) {
@@ -376,25 +438,27 @@ std::string warmStartRefusal(const SceneOutcome& previous, const SceneOutcome& n
 SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
                             const SceneSolveOptions& options) {
   if (options.length_scaling) {
-    return solveInLengthUnits(task, limits, options,
+    return solveInLengthUnits(task, options,
                               [&](const SceneTask& scaled, const SceneSolveOptions& inner) {
                                 return solveSceneTask(scaled, limits, inner);
                               });
   }
   Stopwatch stopwatch;
   SceneOutcome outcome;
-  if (!prepare(task, limits, true, outcome)) return outcome;
+  // The task as solved: with the supports that earlier solves found pulling released.
+  SceneTask current = withReleasedSupports(task, options, outcome.released_supports);
+  if (!prepare(current, limits, true, outcome)) return outcome;
   if (!options.prune_pairs) {
     for (PairDecision& decision : outcome.decisions) decision.modelled = true;
   }
   const std::vector<ContactPair> candidates = modelledPairs(outcome.decisions);
-  const FirstGuess first_guess = firstGuess(task, candidates, options);
+  const FirstGuess first_guess = firstGuess(current, candidates, options);
   outcome.pusher_sphere = first_guess.pusher_sphere;
   outcome.planned_legs = first_guess.legs;
   outcome.planned_transits = first_guess.transits;
   // A soft target out of the pushers' reach: the OCP aims at the nearest end the plan can push
   // to (a reachable task, solved as fast as one), and the answer is judged by the real target.
-  const SceneTask aimed = reachableTask(task, first_guess);
+  SceneTask aimed = reachableTask(current, first_guess);
   const SceneOutcome* refine = options.refine;
   // The plan the next round starts from, in the full scene, with the pairs of its multipliers.
   Trajectory from_plan;
@@ -428,11 +492,11 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     const MovingPart part = movingPartOf(aimed, outcome);
     OcpOptions ocp_options = options.ocp;
     ocp_options.discretization.gap_guards = gapGuards(
-        task, part, outcome.held_grazes, outcome.guard_points, ocp_options.discretization);
+        current, part, outcome.held_grazes, outcome.guard_points, ocp_options.discretization);
     const OcpDefinition ocp = buildOcp(part.task, part.modelled);
     ocp_options.homotopy.wall_time_budget =
         std::max(0.0, options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
-    if (pairs_added && !task.scene.hasRobot()) {
+    if (pairs_added && !current.scene.hasRobot()) {
       // The previous round's solution is nearly this round's (the new pairs start separated):
       // its homotopy resumes at the tightest relaxation that round reached, not from guess_sigma,
       // but no tighter than 1e-4 (Push-T resuming at 1e-7 took 371 iterations, at 1e-4 168).
@@ -448,7 +512,7 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     solver.setMonitor(options.monitor);
     const NlpAssembly& nlp = solver.discretization().nlp();
     outcome.sizes = {nlp.numVariables(), nlp.numConstraints(), nlp.numComplementarities()};
-    const std::string too_large = nlpTooLarge(nlp, part.modelled.size(), task, options, limits);
+    const std::string too_large = nlpTooLarge(nlp, part.modelled.size(), current, options, limits);
     if (!too_large.empty() && round == 1) {
       outcome.invalid = too_large + "; ask for fewer intervals, elements or stages";
       return outcome;
@@ -531,28 +595,33 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     pairs_added = measureGaps(aimed, options, round - outcome.graze_rounds, outcome, rounds_note);
     if (pairs_added) continue;
     if (outcome.status != SolveStatus::kSuccess) break;
+    pairs_added = releasePullingSupports({&aimed, &current}, round, outcome, rounds_note);
+    if (pairs_added) continue;
     outcome.grazes = planGrazes(aimed, outcome.trajectory, outcome.modelled, options.graze_depth);
     if (outcome.graze_rounds >= options.max_graze_rounds ||
         !holdGrazes(outcome.grazes, outcome.held_grazes, outcome.guard_points)) {
       break;
     }
     ++outcome.graze_rounds;
-    rounds_note += "; " + describeGrazes(task.scene, outcome.grazes) + ": held in a new round";
+    rounds_note += "; " + describeGrazes(current.scene, outcome.grazes) + ": held in a new round";
   }
   outcome.message += rounds_note;
   if (!outcome.grazes.empty()) {
     outcome.message += "; the plan cuts into a body between stage points: " +
-                       describeGrazes(task.scene, outcome.grazes);
+                       describeGrazes(current.scene, outcome.grazes);
   }
   if (!outcome.trajectory.states.empty()) {
-    outcome.boundary_gap = smallestBoundaryGap(task.scene, outcome.modelled, outcome.trajectory);
+    outcome.boundary_gap = smallestBoundaryGap(current.scene, outcome.modelled, outcome.trajectory);
   }
-  judgeTargets(task, outcome, first_guess);
+  for (int b = 0; b < static_cast<int>(current.scene.bodies().size()); ++b) {
+    outcome.supports.push_back(current.scene.supportOf(b));
+  }
+  judgeTargets(current, outcome, first_guess);
   if (options.verify && outcome.status != SolveStatus::kCancelled) {
     const SimulationOptions fine =
         verificationOptions(options.verification, options.ocp,
                             options.ocp.homotopy.wall_time_budget - stopwatch.wallSeconds());
-    outcome.verification = verifyPlan(task, outcome.trajectory, outcome.decisions, fine,
+    outcome.verification = verifyPlan(current, outcome.trajectory, outcome.decisions, fine,
                                       options.pair_margin, options.graze_depth);
     outcome.verified = true;
   }
@@ -625,12 +694,15 @@ SceneOutcome simulateSceneTask(SceneTask task, const std::vector<Eigen::VectorXd
     task.joints[j].passive = speed == 0.0;
     task.joints[j].max_velocity = speed;
   }
-  if (!prepare(task, limits, false, outcome)) return outcome;
   // In units of the scene's length scale, as a solve (solveInLengthUnits).
   const double length = lengthScale(task);
   const SceneTask scaled = taskInLengthUnits(task, length);
+  if (!prepare(scaled, limits, false, outcome)) return outcome;
+  const Eigen::VectorXd control_units = solveUnits(scaled.scene).control;
   std::vector<Eigen::VectorXd> scaled_controls;
-  for (const Eigen::VectorXd& u : controls) scaled_controls.push_back(u / length);
+  for (const Eigen::VectorXd& u : controls) {
+    scaled_controls.push_back(u.cwiseQuotient(control_units));
+  }
   const MovingPart part = movingPartOf(scaled, outcome);
   const Scene& moving = part.task.scene;
   FesdIntegrator integrator(moving.model(part.modelled), options);
@@ -644,7 +716,7 @@ SceneOutcome simulateSceneTask(SceneTask task, const std::vector<Eigen::VectorXd
   if (options.sensitivities) {
     outcome.sensitivities = fullSceneSensitivities(scaled, part, result.sensitivities);
   }
-  scaleOutcome(outcome, length);
+  outcomeToUserUnits(outcome, solveUnits(scaled.scene));
   outcome.length_scale = length;
   return outcome;
 }

@@ -364,16 +364,20 @@ class CentreConstraints : public SmoothFunction {
   mutable std::vector<double> scratch_;
 };
 
-/// v(x, u, lambda) = B u + sum_k lambda_k grad c_k(x).
+/// v(x, u, lambda) = B u + diag(mobility) sum_k lambda_k grad c_k(x), 0 in the held coordinates
+/// (mobility 0: their entries slot -1, left out of the patterns).
 class CentreVelocity : public SmoothFunction {
  public:
   explicit CentreVelocity(std::shared_ptr<const PairSet> pairs) : pairs_(std::move(pairs)) {
     const CentrePairSystem& system = pairs_->system();
     nx_ = system.state_size;
     nu_ = system.control_size;
+    mobility_ = system.mobility;
+    mobility_.resize(nx_, 1.0);
+    for (double m : mobility_) held_.push_back(m == 0.0);
     PatternBuilder jacobian, hessian;
     for (const auto& [state, control] : system.actuation) {
-      actuation_slots_.push_back(jacobian.slot(state, nx_ + control));
+      actuation_slots_.push_back(held_[state] ? -1 : jacobian.slot(state, nx_ + control));
     }
     for (int k = 0; k < pairs_->size(); ++k) {
       const PairLayout& layout = pairs_->layout(k);
@@ -381,7 +385,7 @@ class CentreVelocity : public SmoothFunction {
       const int n = static_cast<int>(v.size());
       PairSlots slots;
       for (const auto& [i, j] : layout.hessian_entries) {
-        slots.curvature.push_back(jacobian.slot(v[i], v[j]));
+        slots.curvature.push_back(held_[v[i]] ? -1 : jacobian.slot(v[i], v[j]));
       }
       for (int i : layout.hessian_rows) slots.mixed.push_back(hessian.slot(nx_ + nu_ + k, v[i]));
       for (int i = 0; layout.curved && i < n; ++i) {
@@ -393,7 +397,8 @@ class CentreVelocity : public SmoothFunction {
     for (int k = 0; k < pairs_->size(); ++k) {
       const PairLayout& layout = pairs_->layout(k);
       for (int i : layout.gradient_entries) {
-        slots_[k].gradient.push_back(jacobian.slot(layout.variables[i], nx_ + nu_ + k));
+        const int state = layout.variables[i];
+        slots_[k].gradient.push_back(held_[state] ? -1 : jacobian.slot(state, nx_ + nu_ + k));
       }
     }
     jacobian_ = jacobian.pattern;
@@ -407,7 +412,9 @@ class CentreVelocity : public SmoothFunction {
 
   void evaluate(const double* z, double* v) const override {
     std::fill(v, v + nx_, 0.0);
-    for (const auto& [state, control] : pairs_->system().actuation) v[state] += z[nx_ + control];
+    for (const auto& [state, control] : pairs_->system().actuation) {
+      if (!held_[state]) v[state] += z[nx_ + control];
+    }
     pairs_->setState(z);
     for (int k = 0; k < pairs_->size(); ++k) {
       const double lambda = z[nx_ + nu_ + k];
@@ -415,7 +422,8 @@ class CentreVelocity : public SmoothFunction {
       const PairLayout& layout = pairs_->layout(k);
       pairs_->derivatives(k, gradient_.data(), nullptr);
       for (size_t e = 0; e < layout.gradient_entries.size(); ++e) {
-        v[layout.variables[layout.gradient_entries[e]]] += lambda * gradient_[e];
+        const int state = layout.variables[layout.gradient_entries[e]];
+        if (!held_[state]) v[state] += mobility_[state] * lambda * gradient_[e];
       }
     }
   }
@@ -423,17 +431,23 @@ class CentreVelocity : public SmoothFunction {
   const SparsityPattern& jacobianPattern() const override { return jacobian_; }
   void evaluateJacobian(const double* z, double* values) const override {
     std::fill(values, values + jacobian_.nonzeros(), 0.0);
-    for (int slot : actuation_slots_) values[slot] += 1.0;
+    for (int slot : actuation_slots_) {
+      if (slot >= 0) values[slot] += 1.0;
+    }
     pairs_->setState(z);
     for (int k = 0; k < pairs_->size(); ++k) {
       const double lambda = z[nx_ + nu_ + k];
       const PairLayout& layout = pairs_->layout(k);
       pairs_->derivatives(k, gradient_.data(), hessian_values_.data());
       for (size_t e = 0; e < layout.hessian_entries.size(); ++e) {
-        values[slots_[k].curvature[e]] += lambda * hessian_values_[e];
+        const int slot = slots_[k].curvature[e];
+        const int row = layout.variables[layout.hessian_entries[e].first];
+        if (slot >= 0) values[slot] += mobility_[row] * lambda * hessian_values_[e];
       }
       for (size_t e = 0; e < layout.gradient_entries.size(); ++e) {
-        values[slots_[k].gradient[e]] += gradient_[e];
+        const int slot = slots_[k].gradient[e];
+        const int row = layout.variables[layout.gradient_entries[e]];
+        if (slot >= 0) values[slot] += mobility_[row] * gradient_[e];
       }
     }
   }
@@ -445,7 +459,10 @@ class CentreVelocity : public SmoothFunction {
     for (int k = 0; k < pairs_->size(); ++k) {
       const PairLayout& layout = pairs_->layout(k);
       const int n = static_cast<int>(layout.variables.size());
-      const auto weight = [&](int i) { return weights[layout.variables[i]]; };
+      // w . v weighs coordinate i's contact term by its mobility (0: held).
+      const auto weight = [&](int i) {
+        return mobility_[layout.variables[i]] * weights[layout.variables[i]];
+      };
       bool weighted = false;
       for (int i = 0; i < n; ++i) weighted = weighted || weight(i) != 0.0;
       if (!weighted) continue;
@@ -484,6 +501,8 @@ class CentreVelocity : public SmoothFunction {
   };
   std::shared_ptr<const PairSet> pairs_;
   int nx_, nu_;
+  std::vector<double> mobility_;                           ///< per state coordinate
+  std::vector<bool> held_;                                 ///< mobility 0
   mutable std::vector<double> gradient_, hessian_values_;  ///< one pair's, PairSet's buffers
   std::vector<int> actuation_slots_;
   std::vector<PairSlots> slots_;

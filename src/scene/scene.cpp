@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <Eigen/Geometry>
+
+#include "fesd_trajopt/kinematics/reach.h"
 
 namespace fesd {
 namespace {
@@ -204,6 +207,8 @@ bool Scene::linksMayCollide(int sphere_a, int sphere_b) const {
 std::vector<ContactPair> Scene::allPairs() const {
   std::vector<ContactPair> pairs;
   const std::vector<CollisionBody> bodies = collisionBodies();
+  std::vector<int> supports;
+  for (int b = 0; b < static_cast<int>(bodies_.size()); ++b) supports.push_back(supportOf(b));
   const int all = static_cast<int>(bodies.size());
   const int obstacles = static_cast<int>(obstacles_.size());
   const int walls = static_cast<int>(walls_.size());
@@ -224,9 +229,55 @@ std::vector<ContactPair> Scene::allPairs() const {
     }
     if (!moves) continue;
     for (int o = 0; o < obstacles; ++o) pairs.push_back({i, ContactPair::Kind::kObstacle, o});
-    for (int w = 0; w < walls; ++w) pairs.push_back({i, ContactPair::Kind::kWall, w});
+    for (int w = 0; w < walls; ++w) {
+      // A body slides on its support: a joint, no contact.
+      if (bodies[i].free_body < 0 || supports[bodies[i].free_body] != w) {
+        pairs.push_back({i, ContactPair::Kind::kWall, w});
+      }
+    }
   }
   return pairs;
+}
+
+double Scene::jointUnit(int joint) const {
+  const KinematicJoint& j = robot_->joints.at(joint);
+  return j.type == JointType::kPrismatic ? length_unit : j.coordinate_scale;
+}
+
+bool Scene::isLevel(int wall) const {
+  return dimension_ == 3 && std::fabs(std::fabs(walls_.at(wall).normal(2)) - 1.0) <= 1e-12;
+}
+
+std::pair<double, double> Scene::lowestGap(int body, int wall) const {
+  const Eigen::VectorXd x0 = initialState();
+  const std::vector<CollisionBody> bodies = collisionBodies();
+  double gap = std::numeric_limits<double>::infinity(), radius = 0.0;
+  for (int c : freeBodyCollisionBodies(body)) {
+    const double sphere_gap = pairGap({c, ContactPair::Kind::kWall, wall}, x0);
+    if (sphere_gap < gap) {
+      gap = sphere_gap;
+      radius = bodies[c].radius;
+    }
+  }
+  return {gap, radius};
+}
+
+std::vector<int> Scene::restingWalls(int body) const {
+  std::vector<int> resting;
+  for (int w = 0; w < static_cast<int>(walls_.size()); ++w) {
+    if (!isLevel(w)) continue;
+    const auto [gap, radius] = lowestGap(body, w);
+    if (std::fabs(gap) <= kRestingTolerance * radius) resting.push_back(w);
+  }
+  return resting;
+}
+
+int Scene::supportOf(int body) const {
+  const SceneBody& b = bodies_.at(body);
+  if (dimension_ != 3 || b.support == SupportMode::kNone) return -1;
+  if (b.support == SupportMode::kWall) return b.support_wall;
+  const std::vector<int> resting = restingWalls(body);
+  return resting.size() == 1 ? resting.front() : -1;
 }
 
 std::string Scene::pairName(const ContactPair& pair) const {
@@ -357,6 +408,20 @@ std::shared_ptr<const DcsModel> Scene::model(const std::vector<ContactPair>& pai
     for (int d = 0; d < dimension_; ++d) {
       system.actuation.emplace_back(stateIndex(b) + d, controlIndex(b) + d);
     }
+  }
+  // A revolute joint's motion weighs as an arc at the robot's reach (units of length, as the
+  // positions'); a support holds its body's height: the contacts' normal force goes into it.
+  system.mobility.assign(system.state_size, 1.0);
+  if (robot_) {
+    const double reach = robotReach(*robot_);
+    for (int j = 0; j < numJoints(); ++j) {
+      if (robot_->joints[j].type != JointType::kPrismatic) {
+        system.mobility[j] = 1.0 / (reach * reach);
+      }
+    }
+  }
+  for (int b = 0; b < static_cast<int>(bodies_.size()); ++b) {
+    if (supportOf(b) >= 0) system.mobility[stateIndex(b) + 2] = 0.0;
   }
   const std::vector<CollisionBody> bodies = collisionBodies();
   system.constraint_scales.resize(pairs.size());

@@ -156,7 +156,8 @@ std::string bodiesProblem(const Scene& scene, const std::vector<BodyTask>& bodie
     const std::string who = "body '" + body.name + "'";
     if (!names.insert(body.name).second) return "two bodies are named '" + body.name + "'";
     if (!(body.radius > 0.0) || !std::isfinite(body.radius)) {
-      return who + " has radius " + formatNumber(body.radius) + " (must be > 0 and finite)";
+      return who + " has radius " + formatNumber(scene.userLength(body.radius)) +
+             " (must be > 0 and finite)";
     }
     std::string problem = vectorProblem(body.position, dim, limits.max_coordinate);
     if (!problem.empty()) return who + ": the initial position " + problem;
@@ -183,11 +184,45 @@ std::string bodiesProblem(const Scene& scene, const std::vector<BodyTask>& bodie
   return "";
 }
 
+/// A support that cannot hold its body: named in a planar scene, no wall, not level or not under
+/// the body; or two level walls a body rests on without a name for either.
+std::string supportProblem(const Scene& scene) {
+  for (int b = 0; b < static_cast<int>(scene.bodies().size()); ++b) {
+    const SceneBody& body = scene.bodies()[b];
+    const std::string who = "body '" + body.name + "'";
+    if (body.support == SupportMode::kWall) {
+      const int w = body.support_wall;
+      if (scene.dimension() != 3) {
+        return who + ": supports are for spatial scenes (planar bodies move in their plane)";
+      }
+      if (w < 0 || w >= static_cast<int>(scene.walls().size())) {
+        return who + ": its support is no wall of the scene";
+      }
+      const std::string wall = "'" + scene.walls()[w].name + "'";
+      if (!scene.isLevel(w)) {
+        return who + " cannot slide on " + wall + ": a support must be level (normal along z)";
+      }
+      const auto [gap, radius] = scene.lowestGap(b, w);
+      if (std::fabs(gap) > kRestingTolerance * radius) {
+        return who + " does not rest on " + wall + ": its lowest sphere is " +
+               formatNumber(scene.userLength(gap)) + " from it";
+      }
+    } else if (body.support == SupportMode::kAuto) {
+      const std::vector<int> resting = scene.restingWalls(b);
+      if (resting.size() > 1) {
+        return who + " rests on two level walls, '" + scene.walls()[resting[0]].name + "' and '" +
+               scene.walls()[resting[1]].name + "': name its support, or let it float";
+      }
+    }
+  }
+  return "";
+}
+
 std::string fixedGeometryProblem(const Scene& scene, const TaskLimits& limits) {
   const int dim = scene.dimension();
   for (const SceneObstacle& o : scene.obstacles()) {
     if (!(o.radius > 0.0) || !std::isfinite(o.radius)) {
-      return "obstacle '" + o.name + "' has radius " + formatNumber(o.radius) +
+      return "obstacle '" + o.name + "' has radius " + formatNumber(scene.userLength(o.radius)) +
              " (must be > 0 and finite)";
     }
     const std::string problem = vectorProblem(o.position, dim, limits.max_coordinate);
@@ -226,8 +261,10 @@ std::string jointsProblem(const SceneTask& task) {
     }
     const auto [lower, upper] = jointBounds(task, j);
     if (q0 < lower || q0 > upper) {
-      return who + " starts at " + formatNumber(q0) + ", outside its bounds [" +
-             formatNumber(lower) + ", " + formatNumber(upper) + "]";
+      // In the user's radians or lengths (a solve's coordinates are over scene.jointUnit).
+      const double unit = scene.jointUnit(j);
+      return who + " starts at " + formatNumber(unit * q0) + ", outside its bounds [" +
+             formatNumber(unit * lower) + ", " + formatNumber(unit * upper) + "]";
     }
   }
   return "";
@@ -288,13 +325,7 @@ std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
     return "too many collision spheres on free bodies: " + std::to_string(free_spheres) + " > " +
            std::to_string(limits.max_spheres);
   }
-  for (const SceneBody& body : scene.bodies()) {
-    // The robot's guess pushes a body's bounding disc and plans no turn; the planar arm's NLP
-    // finds the turn, the Panda's did not (docs/results.md).
-    if (body.turns && scene.hasRobot() && scene.dimension() == 3) {
-      return "body '" + body.name + "' turns: bodies turn in planar robot scenes only (yet)";
-    }
-  }
+
   if (static_cast<int>(scene.obstacles().size()) > limits.max_obstacles) {
     return "too many obstacles (limit " + std::to_string(limits.max_obstacles) + ")";
   }
@@ -338,7 +369,17 @@ std::string validateTask(const SceneTask& task, const TaskLimits& limits) {
   }
   if (scene.controlSize() == 0) return "no body is actuated, so nothing can move";
   problem = fixedGeometryProblem(scene, limits);
+  if (problem.empty()) problem = supportProblem(scene);
   if (!problem.empty()) return problem;
+  for (int b = 0; b < static_cast<int>(scene.bodies().size()); ++b) {
+    // A body that turns about z in a robot's space slides on a table: floating, it may tilt out
+    // of the plane the turn is about, which its model does not hold.
+    if (scene.bodies()[b].turns && scene.hasRobot() && dim == 3 && scene.supportOf(b) < 0) {
+      return "body '" + scene.bodies()[b].name +
+             "' turns in a spatial robot scene: it must rest on a level wall (a table) to turn "
+             "about its normal";
+    }
+  }
   const Eigen::VectorXd x0 = scene.initialState();
   const std::vector<ContactPair> all = scene.allPairs();
   for (const ContactPair& pair : all) {
@@ -401,19 +442,31 @@ std::string infeasibility(const SceneTask& task) {
     const std::string who = "body '" + task.scene.bodies()[b].name + "'";
     // All of a body's collision bodies share its reach.
     const int first = task.scene.freeBodyCollisionBodies(static_cast<int>(b))[0];
-    const bool turned =
-        std::fabs(t.target_yaw - task.scene.bodies()[b].yaw) > targetTolerance(t.target_yaw_weight);
+    // A yaw is judged in radians with the user's weight (a solve's is over length_unit^2).
+    const double unit = task.scene.length_unit;
+    const bool turned = std::fabs(t.target_yaw - task.scene.bodies()[b].yaw) >
+                        targetTolerance(t.target_yaw_weight * unit * unit);
     if (t.hasYawTarget() && turned && reach[first] == 0.0) {
       return who + " cannot reach its target yaw: nothing that moves can push it";
     }
     if (t.target.size() == 0 || t.target_weight == 0.0) continue;
     if (!t.insideWorkspace(t.target)) return who + " has its target outside its workspace bounds";
+    const int support = task.scene.supportOf(static_cast<int>(b));
+    if (support >= 0) {  // a spatial scene's body: its height stays
+      const double height = task.scene.bodies()[b].position(2);
+      if (std::fabs(t.target(2) - height) > targetTolerance(t.target_weight)) {
+        return who + " slides on '" + task.scene.walls()[support].name + "' at a height of " +
+               formatNumber(task.scene.userLength(height)) +
+               ": its target is off that plane (z = " +
+               formatNumber(task.scene.userLength(t.target(2))) + ")";
+      }
+    }
     const Box box = reachableBox(task, static_cast<int>(b), Eigen::Vector3d::Zero(), reach[first]);
     const double miss = boxDistance(box, Box{t.target, t.target});
     // Within its tolerance a target counts as met (a replan from where a push nearly ended).
     if (miss > targetTolerance(t.target_weight)) {
       return who + " cannot reach its target within the horizon: it stays at least " +
-             formatNumber(miss) + " away" +
+             formatNumber(task.scene.userLength(miss)) + " away" +
              (reach[first] > 0.0 ? "" : " (nothing that moves can push it)");
     }
   }
@@ -493,6 +546,14 @@ OcpDefinition buildOcp(const SceneTask& task, const std::vector<ContactPair>& mo
   if (nu > 0 && task.control_weight > 0.0) {
     Eigen::VectorXd weights = Eigen::VectorXd::Zero(nx + nu);
     weights.tail(nu).setConstant(task.control_weight);
+    // A revolute joint's speed as the speed of an arc at the robot's reach (the projection's
+    // metric, Scene::model): the cost in lengths throughout.
+    const double reach = scene.hasRobot() ? robotReach(scene.robot()) : 1.0;
+    for (int j = 0; j < scene.numJoints(); ++j) {
+      if (scene.robot().joints[j].type != JointType::kPrismatic) {
+        weights(nx + j) *= reach * reach;
+      }
+    }
     ocp.lagrange_cost =
         QuadraticFunction::weightedDistance(weights, Eigen::VectorXd::Zero(nx + nu));
   }

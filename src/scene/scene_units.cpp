@@ -1,6 +1,7 @@
 #include "fesd_trajopt/scene/scene_units.h"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -59,21 +60,47 @@ void scaleJointTask(JointTask& joint, double factor) {
   joint.upper *= factor;
 }
 
+/// The joint tasks and start of a robot in a solve's units (coordinates over their units): speeds
+/// made explicit where the task's default would have applied, target weights such that each
+/// target's cost is the task's over length_scale^2.
+void jointsInUnits(const SceneTask& task, const Scene& solve_scene, double length_scale,
+                   std::vector<JointTask>& joints, Eigen::VectorXd& q0) {
+  for (int j = 0; j < solve_scene.numJoints(); ++j) {
+    JointTask& joint = joints[j];
+    const double unit = solve_scene.jointUnit(j);
+    if (!joint.passive && !(joint.max_velocity > 0.0) &&
+        !(task.scene.robot().joints[j].max_velocity > 0.0)) {
+      joint.max_velocity = task.default_joint_velocity;
+    }
+    scaleJointTask(joint, 1.0 / unit);
+    joint.target_weight *= unit * unit / (length_scale * length_scale);
+    q0(j) /= unit;
+  }
+}
+
 }  // namespace
 
 double lengthScale(const SceneTask& task) {
   const Scene& scene = task.scene;
+  // A sphere the robot's commands move: on a chain with a joint that is not passive.
+  const auto commanded = [&](int sphere) {
+    const std::vector<int>& chain = scene.robot().chainOf(sphere);
+    return std::any_of(chain.begin(), chain.end(), [&](int j) {
+      return j >= static_cast<int>(task.joints.size()) || !task.joints[j].passive;
+    });
+  };
   std::vector<double> driven, free;
   for (const CollisionBody& body : scene.collisionBodies()) {
     if (body.free_body >= 0) {
       free.push_back(body.radius);
       if (scene.bodies()[body.free_body].actuated) driven.push_back(body.radius);
-    } else if (scene.robot().links[scene.robot().spheres[body.sphere].link].joint >= 0) {
+    } else if (commanded(body.sphere)) {
       driven.push_back(body.radius);
     }
   }
-  if (!driven.empty()) return median(driven);
-  return free.empty() ? 1.0 : median(free);
+  const double length = !driven.empty() ? median(driven) : free.empty() ? 1.0 : median(free);
+  // A task with a radius that is not positive or finite is refused as it is (validateTask).
+  return length > 0.0 && std::isfinite(length) ? length : 1.0;
 }
 
 SceneTask scaledTask(const SceneTask& task, double factor) {
@@ -105,13 +132,28 @@ SceneTask taskInLengthUnits(const SceneTask& task, double length_scale) {
   std::shared_ptr<const KinematicModel> robot;
   if (scene.hasRobot()) {
     robot = std::make_shared<const KinematicModel>(inLengthUnits(scene.robot(), length_scale));
-    for (JointTask& joint : scaled.joints) scaleJointTask(joint, factor);
-    scaled.default_joint_velocity *= factor;
   }
-  scaled.scene = scaledScene(scene, factor, robot, scene.initialJoints() * factor);
-  scaleBodyTasks(scaled.bodies, factor);
+  scaled.scene = scaledScene(scene, factor, robot, scene.initialJoints());
   scaled.scene.length_unit = scene.length_unit * length_scale;
+  if (robot) {
+    Eigen::VectorXd q0 = scene.initialJoints();
+    jointsInUnits(task, scaled.scene, length_scale, scaled.joints, q0);
+    scaled.scene.setRobot(robot, q0);
+    scaled.default_joint_velocity *= factor;  // every joint's speed is explicit
+  }
+  scaleBodyTasks(scaled.bodies, factor);
   return scaled;
+}
+
+SolveUnits solveUnits(const Scene& solve_scene) {
+  SolveUnits units;
+  units.length = solve_scene.length_unit;
+  units.state = Eigen::VectorXd::Constant(solve_scene.stateSize(), units.length);
+  units.control = Eigen::VectorXd::Constant(solve_scene.controlSize(), units.length);
+  for (int j = 0; j < solve_scene.numJoints(); ++j) {
+    units.state(j) = units.control(j) = solve_scene.jointUnit(j);
+  }
+  return units;
 }
 
 }  // namespace fesd

@@ -47,11 +47,11 @@ int PlanStructure::largestElements() const {
              : *std::max_element(interval_elements.begin(), interval_elements.end());
 }
 
-std::string movingBodyName(const SceneBody& body) {
+std::string movingBodyName(const SceneBody& body, double length_unit) {
   std::ostringstream text;
-  text << body.name << " (radius " << body.radius << ", "
+  text << body.name << " (radius " << length_unit * body.radius << ", "
        << (body.actuated ? "actuated" : "passive");
-  if (body.turns) text << ", turning, rho " << body.turning_radius;
+  if (body.turns) text << ", turning, rho " << length_unit * body.turning_radius;
   text << ")";
   return text.str();
 }

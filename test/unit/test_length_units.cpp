@@ -41,7 +41,8 @@ TEST(LengthUnits, EachPairKeepsItsOwnUnits) {
   const std::vector<ContactPair> pairs{{0, ContactPair::Kind::kBody, 1},
                                        {0, ContactPair::Kind::kWall, 0}};
   fesd::Trajectory trajectory = twoPairTrajectory();
-  fesd::scaleTrajectory(trajectory, pairs, 10.0);
+  fesd::scaleTrajectory(trajectory, pairs,
+                        {10.0, Eigen::Vector2d::Constant(10.0), Eigen::Vector2d::Constant(10.0)});
   const fesd::ElementValues& element = trajectory.elements[0];
   EXPECT_EQ(trajectory.states[1], Eigen::Vector2d(30.0, -40.0));
   EXPECT_EQ(trajectory.controls[0], Eigen::Vector2d(5.0, -2.5));
@@ -117,6 +118,23 @@ TEST(LengthUnits, TheShowcaseInAnyUnitsIsOnePlan) {
   }
 }
 
+// A yaw within its tolerance (1e-3 * 100 / weight rad) of its target is met, at any scale: the
+// solve judges it with the user's weight, not its own (weight over L^2).
+TEST(LengthUnits, AYawTargetWithinItsToleranceIsMetAtAnyScale) {
+  fesd::SceneTask task = fesd_test::boxIntoACorner();
+  task.bodies[0].max_speed = 0.0;  // nothing pushes the box
+  task.bodies[1].target = task.scene.bodies()[1].position;
+  task.bodies[1].target_yaw = task.scene.bodies()[1].yaw + 0.05;
+  task.bodies[1].target_yaw_weight = 1.0;  // tolerance 0.1 rad
+  for (const double k : {1.0, 0.1}) {
+    SCOPED_TRACE(k);
+    const fesd::SceneOutcome outcome = fesd::solveSceneTask(
+        fesd::scaledTask(task, k), fesd::TaskLimits{}, fesd_test::nodeGridOptions());
+    EXPECT_EQ(outcome.infeasible, "");
+    EXPECT_EQ(outcome.status, fesd::SolveStatus::kSuccess) << outcome.message;
+  }
+}
+
 TEST(LengthUnits, RefusalsAndMessagesAreInTheUsersUnits) {
   fesd::SceneTask task = fesd::scaledTask(fesd_test::pushAlongX(), 0.01);
   task.bodies[1].workspace_upper = Eigen::Vector2d(0.02, 1.0);  // the target 0.03 is beyond it
@@ -125,6 +143,19 @@ TEST(LengthUnits, RefusalsAndMessagesAreInTheUsersUnits) {
   EXPECT_FALSE(refused.solved());
   EXPECT_NE(refused.infeasible.find("outside its workspace"), std::string::npos)
       << refused.infeasible;
+  // Beyond reach: the distance it stays away, in metres.
+  fesd::SceneTask slow = fesd::scaledTask(fesd_test::pushAlongX(), 0.01);
+  slow.bodies[0].max_speed = 0.0;
+  const fesd::SceneOutcome stuck =
+      fesd::solveSceneTask(slow, fesd::TaskLimits{}, fesd_test::nodeGridOptions());
+  EXPECT_NE(stuck.infeasible.find("stays at least 0.03 away"), std::string::npos)
+      << stuck.infeasible;
+  // A radius refused, as given.
+  fesd::SceneTask broken = fesd::scaledTask(fesd_test::pushAlongX(), 0.01);
+  broken.scene.bodies()[1].radius = -0.002;
+  const fesd::SceneOutcome invalid =
+      fesd::solveSceneTask(broken, fesd::TaskLimits{}, fesd_test::nodeGridOptions());
+  EXPECT_NE(invalid.invalid.find("has radius -0.002"), std::string::npos) << invalid.invalid;
   // The rock 100 away at scale 1 is 1.3 away at 0.01: the pruned pair says so in metres.
   const fesd::SceneTask rock = fesd::scaledTask(fesd_test::pushingTask(), 0.01);
   const fesd::SceneOutcome pruned =

@@ -261,17 +261,21 @@ TEST(TaskWithARobot, ValidationNamesTheProblem) {
       fesd::robotInScene(task.scene.robotPointer(), Eigen::Vector3d::Zero(), with_box));
   EXPECT_EQ(fesd::validateTask(turning, limits), "");
   EXPECT_EQ(turning.scene.stateSize(), 3 + 3);
-  // ... but not in a spatial one.
+  // In a spatial one only on a table: floating it could tilt out of the plane it turns in.
   fesd::Scene spatial(3);
-  fesd::SceneBody bar{"bar", 0.05, Eigen::Vector3d(5.0, 5.0, 0.05)};
+  fesd::SceneBody bar{"bar", 0.05, Eigen::Vector3d(5.0, 5.0, -0.95)};
   bar.spheres = {{"bar/sphere_0", Eigen::Vector3d(0.0, -0.05, 0.0), 0.05},
                  {"bar/sphere_1", Eigen::Vector3d(0.0, 0.05, 0.0), 0.05}};
   fesd::turnAboutPressureCentre(bar, 0.0);
   spatial.bodies().push_back(bar);
-  const SceneTask turning_in_space =
+  SceneTask turning_in_space =
       fesd::taskOn(fesd::robotInScene(task.scene.robotPointer(), Eigen::Vector3d::Zero(), spatial));
   EXPECT_EQ(fesd::validateTask(turning_in_space, limits),
-            "body 'bar' turns: bodies turn in planar robot scenes only (yet)");
+            "body 'bar' turns in a spatial robot scene: it must rest on a level wall (a table) to "
+            "turn about its normal");
+  turning_in_space.scene.walls().push_back({"table", Eigen::Vector3d::UnitZ(), -1.0});
+  EXPECT_EQ(fesd::validateTask(turning_in_space, limits), "");
+  EXPECT_EQ(turning_in_space.scene.supportOf(0), 0);
 }
 
 TEST(TaskWithARobot, PairsBeyondReachArePruned) {

@@ -12,6 +12,7 @@
 #include "fesd_trajopt/examples/manipulation_example.h"
 #include "fesd_trajopt/examples/robot_scenes.h"
 #include "fesd_trajopt/kinematics/model_units.h"
+#include "fesd_trajopt/kinematics/reach.h"
 #include "support/finite_differences.h"
 #include "support/robot_files.h"
 #include "support/scene_tasks.h"
@@ -80,10 +81,12 @@ TEST(SceneUnits, AScaledTaskHasEveryLengthScaledAndItsAngleWeightsSquared) {
   EXPECT_EQ(mm.scene.initialJoints(), panda.scene.initialJoints());
 }
 
-// The task in units of L is the task with x -> x / L and u -> u / L: its pair functions are the
-// task's divided by L^2 (a wall's by L), its velocity the task's divided by L at the same
-// multipliers (by L for a wall's), its costs the task's divided by L^2, its bounds divided by L.
-TEST(SceneUnits, TheTaskInLengthUnitsIsTheTaskDividedByTheScale) {
+// The task in units of L is the task with x -> x / units and u -> u / units (solveUnits: L, a
+// revolute joint's L / reach): its pair values are the task's over L^2 (a wall's over L), its
+// velocity the task's over the units at the same forces (a wall's over L), the robot's joints
+// weighed by the reach squared in the task's, 1 in the solve's; its cost the task's over L^2,
+// its bounds over the units.
+TEST(SceneUnits, TheTaskInLengthUnitsIsTheTaskOverItsUnits) {
   for (const bool robot : {false, true}) {
     SCOPED_TRACE(robot ? "the Panda" : "a box into a corner");
     fesd::SceneTask task = robot ? pandaTask() : fesd_test::boxIntoACorner();
@@ -94,6 +97,12 @@ TEST(SceneUnits, TheTaskInLengthUnitsIsTheTaskDividedByTheScale) {
     const double length = 0.37;
     const fesd::SceneTask solve = fesd::taskInLengthUnits(task, length);
     EXPECT_EQ(solve.scene.length_unit, length);
+    const fesd::SolveUnits units = fesd::solveUnits(solve.scene);
+    EXPECT_EQ(units.length, length);
+    if (robot) {
+      EXPECT_NEAR(fesd::robotReach(solve.scene.robot()), 1.0, 1e-15);
+      EXPECT_NEAR(units.state(0), length / fesd::robotReach(task.scene.robot()), 1e-16);
+    }
     const std::vector<fesd::ContactPair> pairs = task.scene.allPairs();
     ASSERT_EQ(solve.scene.allPairs().size(), pairs.size());
     const fesd::OcpDefinition ocp = fesd::buildOcp(task, pairs);
@@ -105,15 +114,18 @@ TEST(SceneUnits, TheTaskInLengthUnitsIsTheTaskDividedByTheScale) {
         task.scene.initialState() + 0.05 * fesd_test::randomVector(nx, random);
     const Eigen::VectorXd u = fesd_test::randomVector(nu, random);
     const Eigen::VectorXd lambda = fesd_test::randomVector(nc, random, 0.0, 1.0);
-    EXPECT_LT((solve.scene.initialState() - task.scene.initialState() / length).norm(), 1e-12);
+    EXPECT_LT(
+        (solve.scene.initialState() - task.scene.initialState().cwiseQuotient(units.state)).norm(),
+        1e-12);
     const auto model = task.scene.model(pairs), solve_model = solve.scene.model(pairs);
     Eigen::VectorXd c(nc), solve_c(nc), v(nx), solve_v(nx);
     model->constraints()->evaluate(x.data(), c.data());
-    const Eigen::VectorXd x_solve = x / length;
+    const Eigen::VectorXd x_solve = x.cwiseQuotient(units.state);
+    const Eigen::VectorXd u_solve = u.cwiseQuotient(units.control);
     solve_model->constraints()->evaluate(x_solve.data(), solve_c.data());
     Eigen::VectorXd z(nx + nu + nc), solve_z(nx + nu + nc);
     z << x, u, lambda;
-    solve_z << x_solve, u / length, lambda;
+    solve_z << x_solve, u_solve, lambda;
     for (int k = 0; k < nc; ++k) {
       const bool wall = pairs[k].kind == fesd::ContactPair::Kind::kWall;
       EXPECT_NEAR(solve_c(k), c(k) / (wall ? length : length * length),
@@ -122,22 +134,25 @@ TEST(SceneUnits, TheTaskInLengthUnitsIsTheTaskDividedByTheScale) {
     }
     model->velocity()->evaluate(z.data(), v.data());
     solve_model->velocity()->evaluate(solve_z.data(), solve_v.data());
-    EXPECT_LT((solve_v - v / length).norm(), 1e-12 * (1.0 + v.norm()));
+    EXPECT_LT((solve_v - v.cwiseQuotient(units.state)).norm(), 1e-12 * (1.0 + v.norm()));
     Eigen::VectorXd xu(nx + nu), solve_xu(nx + nu);
     xu << x, u;
-    solve_xu << x_solve, u / length;
+    solve_xu << x_solve, u_solve;
     const double cost = evaluate(*ocp.lagrange_cost, xu) + evaluate(*ocp.mayer_cost, x);
     const double solve_cost =
         evaluate(*solve_ocp.lagrange_cost, solve_xu) + evaluate(*solve_ocp.mayer_cost, x_solve);
     EXPECT_NEAR(solve_cost, cost / (length * length), 1e-12 * cost / (length * length));
-    EXPECT_LT((solve_ocp.control_upper - ocp.control_upper / length).cwiseAbs().maxCoeff(),
-              1e-12 * ocp.control_upper.cwiseAbs().maxCoeff() / length);
+    EXPECT_LT((solve_ocp.control_upper - ocp.control_upper.cwiseQuotient(units.control))
+                  .cwiseAbs()
+                  .maxCoeff(),
+              1e-12 * solve_ocp.control_upper.cwiseAbs().maxCoeff());
     if (robot) {
-      EXPECT_LT((solve_ocp.state_upper.head(task.scene.numJoints()) -
-                 ocp.state_upper.head(task.scene.numJoints()) / length)
+      const int nq = task.scene.numJoints();
+      EXPECT_LT((solve_ocp.state_upper.head(nq) -
+                 ocp.state_upper.head(nq).cwiseQuotient(units.state.head(nq)))
                     .cwiseAbs()
                     .maxCoeff(),
-                1e-12 / length);
+                1e-12 * solve_ocp.state_upper.head(nq).cwiseAbs().maxCoeff());
     }
   }
 }

@@ -18,4 +18,10 @@ double leverArmBound(const KinematicModel& model, int sphere, int joint);
 double sphereReachBound(const KinematicModel& model, int sphere, const Eigen::VectorXd& velocities,
                         double horizon);
 
+/// The robot's reach: the most a sphere can move per unit of a revolute coordinate (the longest
+/// lever arm of any revolute joint to a sphere it moves, times its coordinate_scale); 1 when no
+/// revolute joint moves a sphere. Scenes weigh a revolute joint's motion by it (a radian counts
+/// as an arc at the reach, design.md), which makes a robot's physics independent of its units.
+double robotReach(const KinematicModel& model);
+
 }  // namespace fesd

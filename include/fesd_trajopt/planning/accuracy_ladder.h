@@ -73,7 +73,8 @@ RungChange nextRung(const SceneTask& task, const SceneOutcome& outcome, int stag
 /// finer grid; the cold path when that fails), within the budget. Returns the rung that met the
 /// target, else the most accurate solution (or a failed first rung), with every rung in
 /// `refinements`. A warm start (options.previous, a verified solution on a finer rung of this
-/// ladder) starts the ladder on that rung.
+/// ladder) starts the ladder on that rung. target_accuracy is in units of the task's length scale
+/// (1e-2: 1 % of it) unless options.length_scaling is off (then in the task's units).
 SceneOutcome solveToAccuracy(const SceneTask& task, const TaskLimits& limits,
                              SceneSolveOptions options, double target_accuracy);
 

@@ -17,7 +17,7 @@ struct ClosedLoopOptions {
   int replan_every = 3;
   /// The first plan: the node's default request (verified, the accuracy ladder).
   SceneSolveOptions first;
-  double first_accuracy = 1e-2;
+  double first_accuracy = 1e-2;  ///< relative to the length scale (solveToAccuracy)
   /// The first plan when it is already solved (with these options); not owned.
   const SceneOutcome* first_plan = nullptr;
   /// Each replan: the fastest answer (unverified), warm from the rest of the plan before.

@@ -83,6 +83,11 @@ struct SceneOutcome {
   /// The length the task was solved in (lengthScale, in the task's units; 1 when solved in its
   /// units as given): the report's residuals and tolerances are of the problem in those units.
   double length_scale = 1.0;
+  /// Per body: the wall it slid on (Scene::supportOf), -1 when it floated.
+  std::vector<int> supports;
+  /// Bodies whose support a plan would have had to pull (supportLifts): they float from the round
+  /// after, their pairs with that wall modelled; a finer rung or a replan starts so.
+  std::vector<int> released_supports;
   /// The first guess's residual in the NLP's equations (NlpAssembly::equalityResidual at its
   /// point on the first round's grid): how far it is from dynamics consistent with its contacts.
   /// NaN when the solve started from a previous solution (and its guess was not needed).

@@ -36,12 +36,18 @@ struct CentrePairSystem {
   std::vector<std::pair<int, int>> actuation;  ///< (state index, control index)
   std::vector<CentrePair> pairs;
   Eigen::VectorXd constraint_scales;  ///< per pair, see DcsModel
+  /// Per state coordinate (empty: all 1): the share of the contacts' forces it moves by, the
+  /// inverse of its weight in the projection's metric: v_i = f_i + mobility_i sum_k lambda_k
+  /// dc_k/dx_i. 0 holds the coordinate (a support holds a body's height): its command is dropped
+  /// too, its velocity 0.
+  std::vector<double> mobility;
 };
 
-/// The DCS xdot = B u + grad c(x) lambda, 0 <= c(x) _|_ lambda >= 0 of centre pairs with exact
-/// sparse derivatives. Unlike the disc scenes' quadratic c, a robot sphere's c(q) has curvature of
-/// every order, so the velocity's Jacobian holds lambda_k Hess c_k and the Hessian of w . v the
-/// third derivatives of c_k (contracted with w) and the mixed terms Hess c_k w.
+/// The DCS xdot = B u + diag(mobility) grad c(x) lambda, 0 <= c(x) _|_ lambda >= 0 of centre pairs
+/// with exact sparse derivatives (the held coordinates' rows zero, left out of the patterns).
+/// Unlike the disc scenes' quadratic c, a robot sphere's c(q) has curvature of every order, so the
+/// velocity's Jacobian holds lambda_k Hess c_k and the Hessian of w . v the third derivatives of
+/// c_k (contracted with w) and the mixed terms Hess c_k w.
 std::shared_ptr<const DcsModel> centrePairModel(const CentrePairSystem& system,
                                                 const std::string& name);
 

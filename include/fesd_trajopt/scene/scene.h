@@ -22,6 +22,15 @@ struct FreeBodySphere {
   double radius;
 };
 
+/// What a free body of a spatial scene slides on (design.md, "Bodies on a support"): the level
+/// wall it rests on (kAuto), the wall SceneBody::support_wall (kWall), or nothing: it floats and
+/// every wall is a contact pair of it (kNone).
+enum class SupportMode { kAuto, kNone, kWall };
+
+/// A body rests on a wall when its lowest sphere's gap to it is within this fraction of that
+/// sphere's radius (either side).
+constexpr double kRestingTolerance = 1e-2;
+
 /// A free disc (2-D) or sphere (3-D): a link on a translation joint from the world, or on a
 /// planar joint when it turns. Actuated bodies are velocity-controlled (pdot = u); passive ones
 /// only move when pushed.
@@ -40,6 +49,11 @@ struct SceneBody {
   /// rho (> 0 when it turns): by default its footprint's limitSurfaceRadius (the request layer
   /// sets that).
   double turning_radius = 0.0;
+  /// A body on a level wall slides on it as on a planar joint (Scene::supportOf): its height
+  /// stays, the contacts' forces move it along the wall (the wall takes their normal part) and
+  /// turn it about the wall's normal; the (body, wall) pair is no complementarity.
+  SupportMode support = SupportMode::kAuto;
+  int support_wall = -1;  ///< with kWall: the wall
 };
 
 /// A fixed disc or sphere.
@@ -135,6 +149,9 @@ class Scene {
   /// user's units (userLength).
   double length_unit = 1.0;
   double userLength(double length) const { return length * length_unit; }
+  /// The user's units per unit of joint coordinate j: radians (a revolute joint's
+  /// coordinate_scale; 1 in a user's scene) or, for a prismatic joint, length_unit.
+  double jointUnit(int joint) const;
 
   int stateSize() const;
   int controlSize() const;
@@ -183,6 +200,16 @@ class Scene {
 
   /// The DCS with the given pairs as its constraints, in that order.
   std::shared_ptr<const DcsModel> model(const std::vector<ContactPair>& pairs) const;
+
+  /// Whether a wall is level: its normal along +-z (in a spatial scene).
+  bool isLevel(int wall) const;
+  /// The gap between a free body's lowest sphere and a wall at the start, and that sphere's radius.
+  std::pair<double, double> lowestGap(int body, int wall) const;
+  /// The level walls a free body rests on at the start (kRestingTolerance).
+  std::vector<int> restingWalls(int body) const;
+  /// The wall a free body slides on (SceneBody::support): kWall's wall, the one level wall it
+  /// rests on (kAuto), else -1 (it floats; always in a planar scene, and for kAuto on two).
+  int supportOf(int body) const;
 
  private:
   CentrePair centrePair(const std::vector<CollisionBody>& bodies, const ContactPair& pair) const;

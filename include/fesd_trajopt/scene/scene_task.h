@@ -49,7 +49,8 @@ struct JointTask {
 
 /// A trajectory-optimisation task on a scene: drive the bodies and joints to their targets with
 /// the actuated ones, min  control_weight int |u|^2 dt + sum_b w_b |p_b(T) - target_b|^2
-/// + sum_b w_yaw,b (yaw_b(T) - target_yaw_b)^2 + sum_j w_j (q_j(T) - target_j)^2.
+/// + sum_b w_yaw,b (yaw_b(T) - target_yaw_b)^2 + sum_j w_j (q_j(T) - target_j)^2, a revolute
+/// joint's speed in |u|^2 as an arc's at the robot's reach (robotReach: times reach^2).
 struct SceneTask {
   Scene scene{2};
   std::vector<BodyTask> bodies;   ///< one per free body
@@ -88,7 +89,7 @@ struct TaskLimits {
   int max_elements = 6;
   int max_stages = 4;
   double max_horizon = 1e4;
-  double max_coordinate = 1e6;
+  double max_coordinate = 1e6;  ///< in units of the length scale a solve sees the task in
   /// An NLP whose solve is estimated to need more memory (estimatedSolverMib) is refused.
   double max_solver_mib = 2048.0;
 };

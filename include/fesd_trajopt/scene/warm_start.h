@@ -35,7 +35,8 @@ PlanStructure planStructure(std::vector<std::string> moving_bodies,
                             const DiscretizationOptions& discretization, double length_unit = 1.0);
 
 /// A free body as PlanStructure::moving_bodies names it: "name (radius r, actuated|passive)".
-std::string movingBodyName(const SceneBody& body);
+/// Its lengths in the user's units: times `length_unit` (Scene::length_unit).
+std::string movingBodyName(const SceneBody& body, double length_unit = 1.0);
 
 /// Why a solution of structure `previous` cannot warm-start a task of structure `now`; "" when
 /// it can.
