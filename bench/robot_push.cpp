@@ -25,8 +25,14 @@ namespace fesd_bench {
 
 int robotPush(const Arguments& args) {
   const std::string robot = args.text("robot", "panda");
+  const std::string pushed = args.text("pushed", "puck");
+  if (pushed != "puck" && !(pushed == "bar" && robot == "panda")) {
+    throw std::invalid_argument("--pushed=puck|bar (a bar for the Panda)");
+  }
   fesd::SceneTask task =
-      robot == "panda"        ? fesd::pandaPushTask(shippedRobot("panda_spherized.urdf"))
+      robot == "panda"
+          ? (pushed == "bar" ? fesd::pandaBarTask(shippedRobot("panda_spherized.urdf"))
+                             : fesd::pandaPushTask(shippedRobot("panda_spherized.urdf")))
       : robot == "planar_arm" ? fesd::planarArmPushTask(shippedRobot("planar_arm.urdf"))
                               : throw std::invalid_argument("--robot=panda|planar_arm");
   task.num_intervals = args.integer("intervals", task.num_intervals);

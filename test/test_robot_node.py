@@ -30,6 +30,18 @@ SPEED_LIMITS = [1.0, 1.5, 2.0]  # the URDF's <limit velocity>
 INTERVALS, ELEMENTS = 10, 2
 
 
+def panda_on_the_table(body):
+    """The spherized Panda at its ready pose with `body` on the table z >= 0."""
+    request = PlanRequest()
+    request.urdf_param = PANDA
+    request.bodies = [body]
+    request.walls = [Wall(name="table", normal=Vector3(0.0, 0.0, 1.0), offset=0.0)]
+    ready = [0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785]
+    request.joints = [JointSpec(name="panda_joint%d" % (j + 1), has_initial_position=True,
+                                initial_position=q) for j, q in enumerate(ready)]
+    return request
+
+
 def arm_push_request():
     """The shipped push (examples/robot_scenes.h): the arm from (-0.6, 0, 0) pushes a disc of
     radius 0.05 from (0.6, 0) to (0.6, 0.2) in 2 s."""
@@ -227,15 +239,9 @@ class RobotNodeTest(unittest.TestCase):
         # from its ready pose pushes a puck 0.2 m along x on a table (z >= 0), lazy pairs,
         # inferred spatial; one rung (no accuracy ladder), unverified, as bench robot-push. Its
         # 118 pairs in reach are more than ~robot_all_pairs_up_to: lazy by default.
-        request = PlanRequest()
-        request.urdf_param = PANDA
-        request.bodies = [BodySpec(name="puck", add=True, radius=0.05,
-                                   initial_position=Point(0.45, 0.0, 0.05),
-                                   target=Point(0.65, 0.0, 0.05), target_weight=100.0)]
-        request.walls = [Wall(name="table", normal=Vector3(0.0, 0.0, 1.0), offset=0.0)]
-        ready = [0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785]
-        request.joints = [JointSpec(name="panda_joint%d" % (j + 1), has_initial_position=True,
-                                    initial_position=q) for j, q in enumerate(ready)]
+        request = panda_on_the_table(BodySpec(name="puck", add=True, radius=0.05,
+                                              initial_position=Point(0.45, 0.0, 0.05),
+                                              target=Point(0.65, 0.0, 0.05), target_weight=100.0))
         request.has_horizon, request.horizon = True, 2.0
         request.has_num_intervals, request.num_intervals = True, 5
         request.has_num_elements, request.num_elements = True, 2
@@ -263,6 +269,71 @@ class RobotNodeTest(unittest.TestCase):
         self.assertTrue(contacts, solution.switches)
         self.assertTrue(all(e.first.startswith("panda_") and "/sphere_" in e.first
                             for e in contacts), contacts)
+        # The puck rests on the table: it slid on it, at its height at every element boundary.
+        self.assertEqual(solution.bodies[0].support, "table")
+        self.assertTrue(all(p.z == 0.05 for p in solution.bodies[0].positions))
+        self.assertNotIn(("puck", "table"), [(p.first, p.second) for p in solution.modeled_pairs])
+
+    def test_the_panda_turns_a_bar_on_the_table_to_a_pose(self):
+        # examples/robot_scenes.h, pandaBarTask, through the node's default request (verified, the
+        # accuracy ladder): a bar of three spheres on the table moved 12 cm and turned 0.5 rad.
+        request = panda_on_the_table(BodySpec(
+            name="bar", add=True, initial_position=Point(0.45, 0.0, 0.03),
+            sphere_offsets=[Point(-0.05, 0, 0), Point(0, 0, 0), Point(0.05, 0, 0)],
+            sphere_radii=[0.03, 0.03, 0.03], turns=True, target=Point(0.55, 0.07, 0.03),
+            target_weight=100.0, target_yaw=0.5, target_yaw_weight=100.0))
+        request.has_horizon, request.horizon = True, 3.0
+        request.has_num_intervals, request.num_intervals = True, 12
+        response = self.solve(request)
+        solution = response.solution
+        print("panda turns a bar through the node: status %d, %d Ipopt iterations, %.2f s, bar "
+              "%.2e from its target, yaw %.2e"
+              % (response.status, solution.statistics.ipopt_iterations,
+                 solution.statistics.wall_time, solution.bodies[0].target_distance,
+                 solution.bodies[0].target_yaw_distance))
+        self.assertEqual(response.status, Solution.SUCCESS, response.message)
+        bar = solution.bodies[0]
+        self.assertEqual(bar.support, "table")
+        self.assertLess(bar.target_distance, 5e-3)
+        self.assertLess(bar.target_yaw_distance, math.radians(2.0))
+        self.assertAlmostEqual(bar.yaws[-1], 0.5, delta=math.radians(2.0))
+        self.assertTrue(all(abs(p.z - 0.03) < 1e-12 for p in bar.positions))
+        for pair in solution.modeled_pairs + solution.checked_pairs:
+            self.assertGreaterEqual(pair.min_distance, -1e-9, (pair.first, pair.second))
+
+    def test_supports_that_cannot_hold_a_body_are_refused_and_the_node_keeps_serving(self):
+        def puck_request(z, support="", walls=None):
+            request = PlanRequest()
+            request.urdf = '<robot name="empty"><link name="world"/></robot>'
+            request.planar_override, request.planar = True, False
+            request.bodies = [
+                BodySpec(name="pusher", add=True, radius=0.02, initial_position=Point(-0.2, 0, z),
+                         role=BodySpec.ROLE_ACTUATED, max_speed=0.3),
+                BodySpec(name="puck", add=True, radius=0.05, initial_position=Point(0, 0, z),
+                         target=Point(0.1, 0, z), target_weight=100.0, support=support)]
+            request.walls = walls or [Wall(name="table", normal=Vector3(0, 0, 1), offset=0.0)]
+            request.has_horizon, request.horizon = True, 2.0
+            request.has_num_intervals, request.num_intervals = True, 10
+            return request
+        self.assert_invalid(puck_request(0.05, "post"), "its support 'post' is no wall")
+        lid = Wall(name="lid", normal=Vector3(0, 0, -1), offset=-0.1)
+        self.assert_invalid(puck_request(0.05, walls=[
+            Wall(name="table", normal=Vector3(0, 0, 1), offset=0.0), lid]),
+            "rests on two level walls, 'table' and 'lid'")
+        self.assert_invalid(puck_request(0.04), "puck/table overlap at the start")
+        self.assert_invalid(puck_request(0.2, "table"), "does not rest on 'table'")
+        ramp = Wall(name="ramp", normal=Vector3(0, 0.6, 0.8), offset=0.0)
+        self.assert_invalid(puck_request(0.05, "ramp", walls=[ramp]), "a support must be level")
+        # "none" lets it float: the pair with the table is modelled instead.
+        floating = self.solve(puck_request(0.05, "none"))
+        self.assertIn(floating.status, [Solution.SUCCESS, Solution.ACCURACY_NOT_MET],
+                      floating.message)
+        self.assertEqual(floating.solution.bodies[1].support, "")
+        self.assertIn(("puck", "table"),
+                      [(p.first, p.second) for p in floating.solution.modeled_pairs])
+        resting = self.solve(puck_request(0.05))
+        self.assertEqual(resting.status, Solution.SUCCESS, resting.message)
+        self.assertEqual(resting.solution.bodies[1].support, "table")
 
     def test_a_replan_warm_starts_from_the_last_robot_plan_or_says_why_not(self):
         first = self.solve(arm_push_request())

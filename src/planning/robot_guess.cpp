@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 
 #include <Eigen/Geometry>
 
@@ -53,6 +54,42 @@ PushPlan proxyPlan(const SceneTask& task, int sphere, int body, const Eigen::Vec
   proxy.num_intervals = task.num_intervals;
   proxy.control_weight = task.control_weight;
   return planPushes(proxy, proxy.scene.allPairs());
+}
+
+/// The sphere's push plan in the plane of the table a turning body with a yaw target slides on:
+/// the turning push planner's, with the sphere as a disc and the body's spheres in the plane (its
+/// pairs: the disc with each sphere, in order). None where that planner has none (obstacles,
+/// walls besides level ones, other bodies, no plan of its shapes): the bounding disc's then.
+std::optional<PushPlan> planOnTheTable(const SceneTask& task, int sphere, int body,
+                                       const Eigen::Vector3d& start) {
+  const Scene& scene = task.scene;
+  const SceneBody& pushed = scene.bodies()[body];
+  bool level = true;
+  for (int w = 0; w < static_cast<int>(scene.walls().size()); ++w)
+    level = level && scene.isLevel(w);
+  if (scene.dimension() != 3 || !pushed.turns || !task.bodies[body].hasYawTarget() ||
+      scene.supportOf(body) < 0 || !level || !scene.obstacles().empty() ||
+      scene.bodies().size() != 1) {
+    return std::nullopt;
+  }
+  SceneTask plane;
+  plane.scene = Scene(2);
+  plane.scene.bodies().push_back({scene.robot().spheres[sphere].name,
+                                  scene.robot().spheres[sphere].radius, start.head<2>(), true});
+  SceneBody flat = pushed;
+  flat.position = pushed.position.head<2>();
+  for (FreeBodySphere& s : flat.spheres) s.offset.z() = 0.0;
+  plane.scene.bodies().push_back(flat);
+  plane.bodies = {BodyTask{}, task.bodies[body]};
+  // The sphere's speed in the scene is the joints' doing, not one bound.
+  plane.bodies[0].max_speed = std::numeric_limits<double>::infinity();
+  plane.bodies[1].target = task.bodies[body].target.head<2>();
+  plane.horizon = task.horizon;
+  plane.num_intervals = task.num_intervals;
+  plane.control_weight = task.control_weight;
+  PushPlan plan = planPushes(plane, plane.scene.allPairs());
+  if (!plan.turns_bodies) return std::nullopt;
+  return plan;
 }
 
 /// The collision body of the pushed body that the proxy's push touches: of a body with several
@@ -146,37 +183,61 @@ RobotGuess planRobotGuess(const SceneTask& task, const std::vector<ContactPair>&
     KinematicData data;
     forwardKinematics(scene.robot(), scene.initialJoints(), data);
     const Eigen::Vector3d start = data.sphere_centres[result.pusher_sphere];
-    const PushPlan plan = proxyPlan(task, result.pusher_sphere, result.pushed_body, start);
+    const int body = result.pushed_body, dim = scene.dimension();
+    const std::optional<PushPlan> on_table =
+        planOnTheTable(task, result.pusher_sphere, body, start);
+    const PushPlan plan = on_table ? *on_table : proxyPlan(task, result.pusher_sphere, body, start);
+    result.turns_bodies = on_table.has_value();
+    // The plan's state: the sphere's disc, then the body (on the table: in its plane, turning).
+    const int plan_dim = on_table ? 2 : dim;
     Eigen::VectorXd q = scene.initialJoints();
     InverseKinematicsOptions ik;
     for (const JointTask& joint : task.joints) ik.held.push_back(joint.passive);
     for (int k = 0; k < boundaries; ++k) {
       const double t = horizon * k / (boundaries - 1);
       Eigen::Vector3d target = start;  // planar: keep the sphere's own z
-      target.head(scene.dimension()) = plan.guess.state(t).head(scene.dimension());
+      target.head(plan_dim) = plan.guess.state(t).head(plan_dim);
+      // On the table the sphere pushes at the height of the body's centre: level, no lift.
+      if (on_table) target.z() = scene.bodies()[body].position(2);
       if (k > 0) q = sphereInverseKinematics(scene.robot(), result.pusher_sphere, target, q, ik).q;
       result.boundary_joints.push_back(q);
     }
-    const int body = result.pushed_body, dim = scene.dimension();
     const int first = scene.stateIndex(body);
     const auto plan_state = plan.guess.state;
     const auto plan_multipliers = plan.guess.multipliers;
-    const ContactPair contact{touchedCollisionBody(scene, body, plan), ContactPair::Kind::kBody,
-                              scene.sphereBody(result.pusher_sphere)};
-    const auto found = std::find(pairs.begin(), pairs.end(), contact);
-    const int contact_index = found == pairs.end() ? -1 : static_cast<int>(found - pairs.begin());
+    // Where each of the plan's pairs is in `pairs`: on the table the disc with each of the
+    // body's spheres, else its only body pair, the disc with the body's sphere it touches.
+    const int pusher = scene.sphereBody(result.pusher_sphere);
+    std::vector<int> touched = scene.freeBodyCollisionBodies(body);
+    if (!on_table) touched = {touchedCollisionBody(scene, body, plan)};
+    std::vector<int> rows;
+    for (int c : touched) {
+      const auto found =
+          std::find(pairs.begin(), pairs.end(), ContactPair{c, ContactPair::Kind::kBody, pusher});
+      rows.push_back(found == pairs.end() ? -1 : static_cast<int>(found - pairs.begin()));
+    }
     const int num_pairs = static_cast<int>(pairs.size());
-    result.guess.multipliers = [plan_multipliers, contact_index, num_pairs](double t) {
+    result.guess.multipliers = [plan_multipliers, rows, num_pairs](double t) {
       Eigen::VectorXd lambda = Eigen::VectorXd::Zero(num_pairs);
-      // The proxy's pairs begin with its only body pair: the sphere's disc and the body.
-      if (contact_index >= 0 && plan_multipliers) lambda(contact_index) = plan_multipliers(t)(0);
+      if (!plan_multipliers) return lambda;
+      const Eigen::VectorXd planned = plan_multipliers(t);
+      for (size_t k = 0; k < rows.size() && static_cast<int>(k) < planned.size(); ++k) {
+        if (rows[k] >= 0) lambda(rows[k]) = planned(k);
+      }
       return lambda;
     };
     const std::vector<Eigen::VectorXd> joints = result.boundary_joints;
-    result.guess.state = [x0, joints, horizon, plan_state, first, dim, nq](double t) {
+    const bool turning = on_table.has_value();
+    result.guess.state = [x0, joints, horizon, plan_state, first, dim, nq, turning](double t) {
       Eigen::VectorXd x = x0;
       x.head(nq) = interpolate(joints, horizon, t);
-      x.segment(first, dim) = plan_state(t).segment(dim, dim);
+      const Eigen::VectorXd planned = plan_state(t);
+      if (turning) {  // x, y and s = rho yaw; the height stays
+        x.segment<2>(first) = planned.segment<2>(2);
+        x(first + dim) = planned(4);
+      } else {
+        x.segment(first, dim) = planned.segment(dim, dim);
+      }
       return x;
     };
   }

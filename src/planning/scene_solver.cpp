@@ -84,7 +84,7 @@ FirstGuess firstGuess(const SceneTask& task, const std::vector<ContactPair>& can
                       const SceneSolveOptions& options) {
   if (task.scene.hasRobot()) {
     RobotGuess robot = planRobotGuess(task, candidates, options.ocp.discretization.num_elements);
-    return {std::move(robot.guess), {}, robot.pusher_sphere, {}, {}, false};
+    return {std::move(robot.guess), {}, robot.pusher_sphere, {}, {}, robot.turns_bodies};
   }
   PushPlan plan = planPushes(task, candidates);
   return {std::move(plan.guess), std::move(plan.short_pushes), -1,
@@ -715,6 +715,9 @@ SceneOutcome simulateSceneTask(SceneTask task, const std::vector<Eigen::VectorXd
   outcome.report = result.totals;
   if (options.sensitivities) {
     outcome.sensitivities = fullSceneSensitivities(scaled, part, result.sensitivities);
+  }
+  for (int b = 0; b < static_cast<int>(scaled.scene.bodies().size()); ++b) {
+    outcome.supports.push_back(scaled.scene.supportOf(b));
   }
   outcomeToUserUnits(outcome, solveUnits(scaled.scene));
   outcome.length_scale = length;

@@ -1,5 +1,6 @@
 #include "scene_request.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -84,6 +85,28 @@ std::string requestedSpheres(const fesd_trajopt::BodySpec& spec, const fesd::Tas
 }
 
 /// A body's spheres and turning from the request: "" or why not (starting with a space).
+/// BodySpec.support: "" leaves the body on the level wall it rests on (SupportMode::kAuto),
+/// "none" lets it float, a wall's name puts it on that wall (validateTask checks it rests there).
+std::string applySupport(const fesd_trajopt::BodySpec& spec, fesd::Scene& scene) {
+  if (spec.support.empty()) return "";
+  const auto body = std::find_if(scene.bodies().begin(), scene.bodies().end(),
+                                 [&](const fesd::SceneBody& b) { return b.name == spec.name; });
+  if (body == scene.bodies().end()) return "";  // refused with its name before
+  if (spec.support == "none") {
+    body->support = fesd::SupportMode::kNone;
+    return "";
+  }
+  const auto wall = std::find_if(scene.walls().begin(), scene.walls().end(),
+                                 [&](const fesd::SceneWall& w) { return w.name == spec.support; });
+  if (wall == scene.walls().end()) {
+    return ": its support '" + spec.support +
+           "' is no wall of the scene (only a wall holds a body; \"none\": it floats)";
+  }
+  body->support = fesd::SupportMode::kWall;
+  body->support_wall = static_cast<int>(wall - scene.walls().begin());
+  return "";
+}
+
 std::string applyTurning(const fesd_trajopt::BodySpec& spec, const fesd::TaskLimits& limits,
                          fesd::SceneBody& body, fesd::BodyTask& task) {
   for (const double value :
@@ -284,6 +307,10 @@ std::string applySceneFields(const NodeConfig& config, const SceneFields& reques
       return "wall '" + w.name + "' has no usable normal (zero, NaN or infinite)";
     }
     task.scene.walls().push_back({w.name, normal / length, w.offset / length});
+  }
+  for (const fesd_trajopt::BodySpec& spec : request.bodies) {
+    const std::string problem = applySupport(spec, task.scene);
+    if (!problem.empty()) return "body '" + spec.name + "'" + problem;
   }
   std::set<std::string> names;
   for (const auto& b : task.scene.bodies()) names.insert(b.name);

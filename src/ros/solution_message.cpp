@@ -75,6 +75,9 @@ fesd_trajopt::BodyTrajectory bodyTrajectory(const fesd::Scene& scene, int b,
   message.target_distance = targetDistance(outcome.target_distances, b);
   message.target_yaw_distance = targetDistance(outcome.target_yaw_distances, b);
   message.turning_radius = scene.turningRadius(b);
+  if (b < static_cast<int>(outcome.supports.size()) && outcome.supports[b] >= 0) {
+    message.support = scene.walls()[outcome.supports[b]].name;
+  }
   for (const fesd::FreeBodySphere& sphere : body.spheres) {
     message.sphere_offsets.push_back(point(sphere.offset.head(dim)));
     message.sphere_radii.push_back(sphere.radius);

@@ -71,6 +71,18 @@ fesd::SceneTask boxIntoACorner() {
   return task;
 }
 
+fesd::SceneTask puckOnATable(double pusher_height) {
+  fesd::Scene scene(3);
+  scene.bodies().push_back({"pusher", 0.03, Eigen::Vector3d(-0.2, 0.0, pusher_height), true});
+  scene.bodies().push_back({"puck", 0.05, Eigen::Vector3d(0.0, 0.0, 0.05), false});
+  scene.walls().push_back({"table", Eigen::Vector3d::UnitZ(), 0.0});
+  fesd::SceneTask task = fesd::taskOn(scene);
+  task.bodies[0].max_speed = 0.3;
+  task.horizon = 2.0;
+  task.num_intervals = 10;
+  return task;
+}
+
 fesd::SceneSolveOptions nodeGridOptions() {
   fesd::SceneSolveOptions options;
   options.ocp.discretization.num_elements = 3;

@@ -32,6 +32,10 @@ fesd::SceneTask pushAlongAWall();
 /// T = 4 on 20 intervals.
 fesd::SceneTask boxIntoACorner();
 
+/// A pusher (R = 0.03, |u| <= 0.3) floating at height `pusher_height` 0.2 behind a puck
+/// (R = 0.05) that rests on a table z >= 0 at the origin, T = 2 on 10 intervals; no target.
+fesd::SceneTask puckOnATable(double pusher_height = 0.05);
+
 /// The node's default grid (3 elements, 2 stages) and verification grid (n_s = 3, N_FE = 6).
 fesd::SceneSolveOptions nodeGridOptions();
 

@@ -2,6 +2,7 @@
 // of w . v (which holds the third derivatives of the sphere centres) and the constraints'
 // derivatives against central differences, for every pair kind, planar and spatial; a translating
 // pair's derivatives without structural zeros.
+#include <algorithm>
 #include <memory>
 #include <random>
 
@@ -181,6 +182,51 @@ TEST(CentrePairModel, TranslatingPairsCoupleOnlyTheSameCoordinate) {
   for (int e = 0; e < velocity.nonzeros(); ++e) x_block += velocity.cols[e] < 4;
   EXPECT_EQ(x_block, 8);
   EXPECT_EQ(velocity.nonzeros(), 2 + 8 + 4 + 1);  // B, curvature, lambda_0's column, lambda_1's
+}
+
+}  // namespace
+
+namespace {
+
+// A coordinate's mobility scales the contacts' share of its velocity (a robot's joints weighed by
+// the reach squared), and 0 holds it (a support holding a body's height): its velocity is 0
+// whatever the command and the forces, and its row is no entry of the patterns.
+TEST(CentrePairModel, MobilityScalesTheContactTermsAndZeroHoldsACoordinate) {
+  fesd::CentrePairSystem unit = mixedSystem("panda_spherized.urdf", 3);
+  fesd::CentrePairSystem weighed = unit;
+  const int nq = unit.robot->numCoordinates(), held = nq + 3 + 2;  // body1's z
+  weighed.mobility.assign(unit.state_size, 1.0);
+  for (int j = 0; j < nq; ++j) weighed.mobility[j] = 0.8;
+  weighed.mobility[nq] = 0.5;
+  weighed.mobility[held] = 0.0;
+  const auto plain = fesd::centrePairModel(unit, "unit");
+  const auto model = fesd::centrePairModel(weighed, "weighed");
+  const int nx = unit.state_size, nu = unit.control_size;
+  std::mt19937 random(43);
+  for (int trial = 0; trial < 5; ++trial) {
+    const Eigen::VectorXd z = fesd_test::randomVector(model->velocity()->inputSize(), random);
+    const auto velocity = fesd_test::checkAgainstFiniteDifferences(
+        *model->velocity(), z, fesd_test::randomVector(nx, random));
+    EXPECT_LT(velocity.jacobian, fesd_test::kTolerance);
+    EXPECT_LT(velocity.hessian, fesd_test::kTolerance);
+    Eigen::VectorXd v(nx), v_plain(nx), forced(nx);
+    model->velocity()->evaluate(z.data(), v.data());
+    plain->velocity()->evaluate(z.data(), v_plain.data());
+    Eigen::VectorXd commanded = z;  // the commands alone: no force
+    commanded.tail(z.size() - nx - nu).setZero();
+    plain->velocity()->evaluate(commanded.data(), forced.data());
+    for (int i = 0; i < nx; ++i) {
+      const double mobility = weighed.mobility[i];
+      if (mobility == 0.0) {
+        EXPECT_EQ(v(i), 0.0);
+      } else {
+        EXPECT_NEAR(v(i) - forced(i), mobility * (v_plain(i) - forced(i)), 1e-12) << i;
+      }
+    }
+  }
+  const fesd::SparsityPattern& pattern = model->velocity()->jacobianPattern();
+  EXPECT_EQ(std::count(pattern.rows.begin(), pattern.rows.end(), held), 0);
+  EXPECT_LT(pattern.nonzeros(), plain->velocity()->jacobianPattern().nonzeros());
 }
 
 }  // namespace

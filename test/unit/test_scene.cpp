@@ -17,6 +17,7 @@
 #include "fesd_trajopt/scene/scene.h"
 #include "support/finite_differences.h"
 #include "support/robot_files.h"
+#include "support/scene_tasks.h"
 
 namespace {
 
@@ -318,6 +319,60 @@ TEST(SceneWithATurningBody, StateLayoutYawAndCentreOfPressure) {
   // Only passive bodies turn.
   scene.bodies()[1].actuated = true;
   EXPECT_THROW(scene.model(scene.allPairs()), std::invalid_argument);
+}
+
+}  // namespace
+
+namespace {
+
+/// fesd_test::puckOnATable's scene with a side wall that touches the puck too.
+fesd::Scene tableScene() {
+  fesd::Scene scene = fesd_test::puckOnATable().scene;
+  scene.walls().push_back({"side", Eigen::Vector3d::UnitY(), -0.05});
+  return scene;
+}
+
+// A body resting on a level wall (within 1 % of its radius) slides on it: its height is held,
+// the contacts' normal force goes into the wall, and the two are no contact pair. A floating
+// body, a tilted wall it touches, a planar scene and kNone leave every wall a pair.
+TEST(SceneSupports, ABodyRestingOnALevelWallSlidesOnIt) {
+  fesd::Scene scene = tableScene();
+  EXPECT_TRUE(scene.isLevel(0));
+  EXPECT_FALSE(scene.isLevel(1));
+  EXPECT_EQ(scene.restingWalls(1), std::vector<int>{0});  // the side wall is not level
+  EXPECT_EQ(scene.supportOf(1), 0);
+  EXPECT_EQ(scene.supportOf(0), -1);  // 0.02 above the table: floating
+  const std::vector<std::string> names = pairNames(scene);
+  EXPECT_FALSE(contains(names, "puck/table"));
+  EXPECT_TRUE(contains(names, "puck/side"));
+  EXPECT_TRUE(contains(names, "pusher/table"));
+  // Held: the puck's height does not move whatever pushes it; its x does.
+  const std::vector<fesd::ContactPair> pairs = scene.allPairs();
+  const auto model = scene.model(pairs);
+  std::mt19937 random(3);
+  const Eigen::VectorXd z =
+      fesd_test::randomVector(model->velocity()->inputSize(), random, 0.1, 1.0);
+  Eigen::VectorXd v(scene.stateSize());
+  model->velocity()->evaluate(z.data(), v.data());
+  EXPECT_EQ(v(scene.stateIndex(1) + 2), 0.0);
+  EXPECT_NE(v(scene.stateIndex(1)), 0.0);
+  const auto derivatives =
+      checkAgainstFiniteDifferences(*model->velocity(), z, randomVector(scene.stateSize(), random));
+  EXPECT_LT(derivatives.jacobian, kTolerance);
+  EXPECT_LT(derivatives.hessian, kTolerance);
+  // Within the tolerance it rests, beyond it floats.
+  scene.bodies()[1].position.z() = 0.05 + 0.4e-3;
+  EXPECT_EQ(scene.supportOf(1), 0);
+  scene.bodies()[1].position.z() = 0.05 + 0.6e-3;
+  EXPECT_EQ(scene.supportOf(1), -1);
+  scene.bodies()[1].position.z() = 0.05;
+  scene.bodies()[1].support = fesd::SupportMode::kNone;
+  EXPECT_EQ(scene.supportOf(1), -1);
+  EXPECT_TRUE(contains(pairNames(scene), "puck/table"));
+  fesd::Scene planar(2);
+  planar.bodies().push_back({"puck", 0.05, Eigen::Vector2d(0.0, 0.05), false});
+  planar.walls().push_back({"floor", Eigen::Vector2d::UnitY(), 0.0});
+  EXPECT_EQ(planar.supportOf(0), -1);
 }
 
 }  // namespace

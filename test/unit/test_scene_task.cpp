@@ -409,3 +409,54 @@ TEST(TaskWithARobot, AFreeLinkNeedsAFreeBodyOfTheScene) {
 }
 
 }  // namespace
+
+namespace {
+
+/// fesd_test::puckOnATable with a target 0.2 along x.
+fesd::SceneTask tableTask() {
+  fesd::SceneTask task = fesd_test::puckOnATable();
+  task.bodies[1].target = Eigen::Vector3d(0.2, 0.0, 0.05);
+  task.bodies[1].target_weight = 100.0;
+  return task;
+}
+
+TEST(SceneTaskSupports, ASupportThatCannotHoldItsBodyIsRefusedByName) {
+  const fesd::TaskLimits limits;
+  EXPECT_EQ(fesd::validateTask(tableTask(), limits), "");
+  fesd::SceneTask sandwiched = tableTask();  // a ceiling on the puck too: two level walls
+  sandwiched.scene.walls().push_back({"lid", -Eigen::Vector3d::UnitZ(), -0.1});
+  EXPECT_EQ(fesd::validateTask(sandwiched, limits),
+            "body 'puck' rests on two level walls, 'table' and 'lid': name its support, or let "
+            "it float");
+  sandwiched.scene.bodies()[1].support = fesd::SupportMode::kWall;
+  sandwiched.scene.bodies()[1].support_wall = 1;
+  EXPECT_EQ(fesd::validateTask(sandwiched, limits), "");
+  fesd::SceneTask tilted = tableTask();
+  tilted.scene.walls().push_back({"ramp", Eigen::Vector3d(0.0, 0.6, 0.8), 0.0});
+  tilted.scene.bodies()[1].support = fesd::SupportMode::kWall;
+  tilted.scene.bodies()[1].support_wall = 1;
+  EXPECT_EQ(fesd::validateTask(tilted, limits),
+            "body 'puck' cannot slide on 'ramp': a support must be level (normal along z)");
+  fesd::SceneTask floating = tableTask();
+  floating.scene.bodies()[0].support = fesd::SupportMode::kWall;  // the pusher, 0.02 above
+  floating.scene.bodies()[0].support_wall = 0;
+  EXPECT_EQ(fesd::validateTask(floating, limits),
+            "body 'pusher' does not rest on 'table': its lowest sphere is 0.02 from it");
+  fesd::SceneTask nowhere = tableTask();
+  nowhere.scene.bodies()[1].support = fesd::SupportMode::kWall;
+  nowhere.scene.bodies()[1].support_wall = 7;
+  EXPECT_EQ(fesd::validateTask(nowhere, limits),
+            "body 'puck': its support is no wall of the scene");
+  // A body inside the table is no body resting on it.
+  fesd::SceneTask sunk = tableTask();
+  sunk.scene.bodies()[1].position.z() = 0.04;
+  EXPECT_EQ(fesd::validateTask(sunk, limits), "puck/table overlap at the start");
+  // A target off the table's plane cannot be met.
+  fesd::SceneTask lifted = tableTask();
+  lifted.bodies[1].target.z() = 0.3;
+  EXPECT_EQ(fesd::infeasibility(lifted),
+            "body 'puck' slides on 'table' at a height of 0.05: its target is off that plane (z = "
+            "0.3)");
+}
+
+}  // namespace

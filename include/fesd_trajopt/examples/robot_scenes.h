@@ -18,4 +18,10 @@ SceneTask planarArmPushTask(std::shared_ptr<const KinematicModel> arm);
 /// within 2 s on 5 control intervals, the joints at their URDF speed limits; no joint targets.
 SceneTask pandaPushTask(std::shared_ptr<const KinematicModel> panda);
 
+/// The Panda brings a bar to a pose on the table: from the ready pose, a bar of three spheres
+/// (radius 0.03, 0.05 apart along x) resting on the table z >= 0 at (0.45, 0, 0.03), yaw 0,
+/// turning as it slides (its limit surface), to (0.55, 0.07, 0.03) and yaw 0.5 rad (weights 100)
+/// within 3 s on 12 control intervals.
+SceneTask pandaBarTask(std::shared_ptr<const KinematicModel> panda);
+
 }  // namespace fesd

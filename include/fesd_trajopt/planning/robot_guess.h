@@ -19,7 +19,9 @@ int pushingSphere(const SceneTask& task, int pushed_body);
 ///    stays at q0 and moves straight to its joint targets);
 ///  - planPushes on a disc scene in which the pushing sphere (pushingSphere) is an actuated disc
 ///    of its radius and the pushed body passive, with the scene's obstacles and walls: the
-///    sphere's and the body's paths and the contact multiplier;
+///    sphere's and the body's paths and the contact multiplier; for a body of spheres that turns
+///    to a target yaw on a level support (a table), with nothing else but level walls, the
+///    turning push plan in the table's plane (the sphere pushing at the body's height);
 ///  - damped least-squares IK (sphereInverseKinematics) of the sphere's path at every element
 ///    boundary, each continued from the one before (the first from q0), joints linear in between;
 ///  - controls per interval from the joints' motion, clamped to their speed limits; the
@@ -31,6 +33,9 @@ struct RobotGuess {
   TrajectoryGuess guess;  ///< multipliers per `pairs` of planRobotGuess
   /// The joints at the element boundaries (their times are horizon * k / boundaries.size() - 1).
   std::vector<Eigen::VectorXd> boundary_joints;
+  /// The pushed body turns in the guess: a body of spheres with a yaw target on a level
+  /// support, planned by the turning push planner in the support's plane (PushPlan::turns_bodies).
+  bool turns_bodies = false;
 };
 RobotGuess planRobotGuess(const SceneTask& task, const std::vector<ContactPair>& pairs,
                           int elements_per_interval);
