@@ -23,6 +23,7 @@ int sweepAccuracy(const Arguments& args);
 int kkt(const Arguments& args);
 int kktSolvers(const Arguments& args);
 int robotPush(const Arguments& args);
+int robotPushes(const Arguments& args);
 int mpccMethods(const Arguments& args);
 int pushT(const Arguments& args);
 int scaleSweep(const Arguments& args);

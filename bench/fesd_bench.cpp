@@ -91,9 +91,18 @@ const std::map<std::string, Command>& commands() {
        {fesd_bench::robotPush,
         "A shipped robot push (examples/robot_scenes.h) after the showcase: status, wall time and\n"
         "    ratio, Ipopt iterations per homotopy step, pairs, NLP size, target distance, gaps,\n"
-        "    contact and release times per pair. --robot=panda|planar_arm --pairs=lazy|all\n"
+        "    contact and release times per pair. --robot=panda|planar_arm|ur3e|planar_iiwa\n"
+        "    --pushed=puck|bar (the Panda's bar, turned on the table) --pairs=lazy|all\n"
         "    --intervals --horizon --elements --stages --budget=150 --margin --verify=true\n"
         "    --showcase=true --accuracy=0 (> 0: the accuracy ladder to it, as the node does)\n"
+        "    --length-scaling=true and the homotopy/Ipopt options of ocp-manipulation"}},
+      {"robot-pushes",
+       {fesd_bench::robotPushes,
+        "Every shipped robot push (Panda puck and bar, UR3e, planar iiwa, planar arm) through\n"
+        "    the node's default request: status, seconds and ratio to the default scene's,\n"
+        "    iterations, target and yaw errors, height change on the support, smallest gap, CSV.\n"
+        "    --scenes=panda_puck,... --node-horizon (5 s, 40 intervals for all) --budget=120\n"
+        "    --accuracy=1e-2 --all-pairs-up-to=32\n"
         "    --length-scaling=true and the homotopy/Ipopt options of ocp-manipulation"}},
       {"mpcc-methods",
        {fesd_bench::mpccMethods,

@@ -34,7 +34,10 @@ int robotPush(const Arguments& args) {
           ? (pushed == "bar" ? fesd::pandaBarTask(shippedRobot("panda_spherized.urdf"))
                              : fesd::pandaPushTask(shippedRobot("panda_spherized.urdf")))
       : robot == "planar_arm" ? fesd::planarArmPushTask(shippedRobot("planar_arm.urdf"))
-                              : throw std::invalid_argument("--robot=panda|planar_arm");
+      : robot == "ur3e"       ? fesd::ur3ePushTask(shippedRobot("ur3e_spherized.urdf"))
+      : robot == "planar_iiwa"
+          ? fesd::planarIiwaPushTask(shippedRobot("planar_iiwa.urdf"))
+          : throw std::invalid_argument("--robot=panda|planar_arm|ur3e|planar_iiwa");
   task.num_intervals = args.integer("intervals", task.num_intervals);
   task.horizon = args.number("horizon", task.horizon);
   fesd::SceneSolveOptions options;

@@ -34,6 +34,7 @@ PdsDiscretization::PdsDiscretization(OcpDefinition ocp, DiscretizationOptions op
   buildComplementarity();
   buildStepEquilibration();
   buildGapGuards();
+  buildForceConstraints();
   addCostsAndConstraints(nlp_, grid_, ocp_, tableau_);
   nlp_.finalize();
 }
@@ -167,6 +168,25 @@ void PdsDiscretization::buildGapGuards() {
       for (int coordinate : row->coordinates()) inputs.push_back(point + coordinate);
     }
     nlp_.addFunctionTerm(row, inputs, -1, {{nlp_.addRows(1, 0.0, kInf), 1.0}});
+  }
+}
+
+void PdsDiscretization::buildForceConstraints() {
+  const std::shared_ptr<const SmoothFunction>& forces = ocp_.force_constraints;
+  if (!forces) return;
+  const Eigen::VectorXd& upper = ocp_.force_upper;
+  if (forces->inputSize() != nx_ + nu_ + nc_ ||
+      (upper.size() != 0 && upper.size() != forces->outputSize())) {
+    throw std::invalid_argument("OcpDefinition: force_constraints has the wrong size");
+  }
+  for (int e = 0; e < numElements(); ++e) {
+    for (const StagePoint& point : stages_[e]) {
+      std::vector<int> inputs = stateControlInputs(grid_, point.x, e, nx_, nu_);
+      for (int k = 0; k < nc_; ++k) inputs.push_back(point.lambda + k);
+      const int row = nlp_.addRows(forces->outputSize(), -kInf, 0.0);
+      for (int r = 0; r < upper.size(); ++r) nlp_.setRowBounds(row + r, -kInf, upper(r));
+      nlp_.addFunctionTerm(forces, inputs, -1, {{row, 1.0}});
+    }
   }
 }
 

@@ -17,6 +17,9 @@ StewartDiscretization::StewartDiscretization(OcpDefinition ocp, DiscretizationOp
   if (!options_.gap_guards.empty()) {
     throw std::invalid_argument("StewartDiscretization: gap guards are for a PDS's constraints");
   }
+  if (ocp_.force_constraints) {
+    throw std::invalid_argument("StewartDiscretization: force constraints are for a PDS's forces");
+  }
   nf_ = model_->numModes();
   nsys_ = model_->numSubsystems();
   steps_free_ = options_.switch_detection;

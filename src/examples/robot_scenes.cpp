@@ -46,6 +46,31 @@ SceneTask pandaPushTask(std::shared_ptr<const KinematicModel> panda) {
   return task;
 }
 
+SceneTask ur3ePushTask(std::shared_ptr<const KinematicModel> ur3e) {
+  Scene table(3);
+  table.bodies().push_back({"puck", 0.03, Eigen::Vector3d(-0.3, 0.1, 0.03), false});
+  table.walls().push_back({"table", Eigen::Vector3d(0.0, 0.0, 1.0), 0.0});
+  const Eigen::VectorXd q0 =
+      (Eigen::VectorXd(6) << -0.91, -0.98, 1.52, -1.95, -1.92, 0.0).finished();
+  SceneTask task = taskOn(robotInScene(std::move(ur3e), q0, table));
+  task.bodies[0].target = Eigen::Vector3d(-0.3, -0.1, 0.03);
+  task.bodies[0].target_weight = 100.0;
+  task.horizon = 2.0;
+  task.num_intervals = 8;
+  return task;
+}
+
+SceneTask planarIiwaPushTask(std::shared_ptr<const KinematicModel> iiwa) {
+  Scene discs(2);
+  discs.bodies().push_back({"disc", 0.04, Eigen::Vector2d(0.75, 0.0), false});
+  SceneTask task = taskOn(robotInScene(std::move(iiwa), Eigen::Vector3d(-0.6, 0.0, 0.0), discs));
+  task.bodies[0].target = Eigen::Vector2d(0.75, 0.2);
+  task.bodies[0].target_weight = 100.0;
+  task.horizon = 2.0;
+  task.num_intervals = 10;
+  return task;
+}
+
 SceneTask pandaBarTask(std::shared_ptr<const KinematicModel> panda) {
   SceneBody bar{"bar", 0.03, Eigen::Vector3d(0.45, 0.0, 0.03)};
   for (int k = 0; k < 3; ++k) {

@@ -303,8 +303,7 @@ class FesdIntegrator::Run {
       ActiveSetStep fast =
           solveByActiveSets(discretization, guess, predicted, fast_options, newton_);
       result.newton_iterations += fast.newton_iterations;
-      if (fast.outcome == ActiveSetOutcome::kFailed && reference_drifts_ &&
-          predicted != from_start) {
+      if (fast.outcome == ActiveSetOutcome::kFailed && predicted != from_start) {
         fast = solveByActiveSets(discretization, guess, from_start, fast_options, newton_);
         result.newton_iterations += fast.newton_iterations;
       }
@@ -398,17 +397,13 @@ class FesdIntegrator::Run {
   Eigen::VectorXd previous_control_;  ///< of the last part in the trajectory (or the arrival)
   Trajectory arrival_;                ///< restart's: how a restarted run's state was reached
   /// A trajectory close to the one sought (a plan being verified): its forces predict each
-  /// part's active sets; nullptr: predicted from the start.
+  /// part's active sets; where its modes fail, those the run's own history predicts are tried
+  /// too (a run drifts from it: one run from its start, and within an interval also one started
+  /// from its states, on a finer grid); nullptr: predicted from the start.
   const Trajectory* reference_ = nullptr;
-  /// The run may drift from the reference (one run from its start, not from its states): where
-  /// its modes fail, those the run's own history predicts are tried too.
-  bool reference_drifts_ = false;
 
  public:
-  void setReference(const Trajectory* reference, bool drifts) {
-    reference_ = reference;
-    reference_drifts_ = drifts;
-  }
+  void setReference(const Trajectory* reference) { reference_ = reference; }
   /// By (tenths, middles, kind); a map's references stay valid as parts are added.
   std::map<std::tuple<int, int, Kind>, Part> parts_;
   bool split_ = false;  ///< the current step was split
@@ -434,7 +429,7 @@ SimulationResult FesdIntegrator::simulate(const Eigen::VectorXd& x0, double hori
     throw std::invalid_argument("FesdIntegrator: give one control per step or a single one");
   }
   Run run(*this, x0, horizon / num_steps, num_steps);
-  run.setReference(reference, true);
+  run.setReference(reference);
   SimulationResult& result = run.result;
   for (int step = 0; step < num_steps; ++step) {
     const Eigen::VectorXd u =
@@ -487,7 +482,7 @@ ShootingResult FesdIntegrator::shoot(const std::vector<Eigen::VectorXd>& starts,
   ShootingResult shooting;
   shooting.status = SolveStatus::kSuccess;
   Run run(*this, starts[0], step_length, 1);
-  run.setReference(reference, false);
+  run.setReference(reference);
   for (int k = 0; k < steps; ++k) {
     Trajectory arrival =
         k > 0 && reference != nullptr ? lastElementOf(*reference, k - 1) : Trajectory();

@@ -375,56 +375,50 @@ std::vector<GapGuard> gapGuards(const SceneTask& task, const MovingPart& part,
   return guards;
 }
 
-/// The task with the supports an earlier solve released (a finer rung's, a replan's) released,
-/// and those bodies in `released`.
-SceneTask withReleasedSupports(const SceneTask& task, const SceneSolveOptions& options,
-                               std::vector<int>& released) {
-  SceneTask floating = task;
+/// The task with the bodies an earlier solve held on their supports (a finer rung's, a
+/// replan's) held, and those bodies in `held`.
+SceneTask withHeldBodies(const SceneTask& task, const SceneSolveOptions& options,
+                         std::vector<int>& held) {
+  SceneTask holding = task;
   for (const SceneOutcome* earlier : {options.refine, options.previous}) {
     if (earlier == nullptr) continue;
-    for (int b : earlier->released_supports) {
-      if (b >= static_cast<int>(floating.scene.bodies().size())) continue;
-      floating.scene.bodies()[b].support = SupportMode::kNone;
-      if (std::find(released.begin(), released.end(), b) == released.end()) released.push_back(b);
+    for (int b : earlier->held_on_support) {
+      if (b >= static_cast<int>(holding.bodies.size())) continue;
+      holding.bodies[b].hold_on_support = true;
+      if (std::find(held.begin(), held.end(), b) == held.end()) held.push_back(b);
     }
   }
-  return floating;
+  return holding;
 }
 
 /// After a successful round: the supported bodies whose plan would lift them off their support
-/// float from the next round (in `tasks`), their pairs with that wall modelled; true when there
+/// are pushed from the next round only as their support holds them (in `tasks`); true when there
 /// is one.
-bool releasePullingSupports(std::vector<SceneTask*> tasks, int round, SceneOutcome& outcome,
-                            std::string& rounds_note) {
+bool holdLiftedBodies(std::vector<SceneTask*> tasks, int round, SceneOutcome& outcome,
+                      std::string& rounds_note) {
   const SceneTask& task = *tasks.front();
   const Scene& scene = task.scene;
   const std::vector<double> lifts = supportLifts(task, outcome.trajectory, outcome.modelled);
-  bool released = false;
+  bool held = false;
   for (int b = 0; b < static_cast<int>(lifts.size()); ++b) {
     const int wall = scene.supportOf(b);
-    if (wall < 0 || !(lifts[b] > kSupportLiftTolerance * boundingRadius(scene.bodies()[b]))) {
+    if (wall < 0 || task.bodies[b].hold_on_support ||
+        !(lifts[b] > kSupportLiftTolerance * boundingRadius(scene.bodies()[b]))) {
       continue;
     }
     std::ostringstream note;
     note.precision(3);
     note << "; a push of round " << round << " would lift '" << scene.bodies()[b].name << "' off '"
          << scene.walls()[wall].name << "' by " << scene.userLength(lifts[b])
-         << " (a push from below its centre, which the support cannot hold down): it floats from "
-            "round "
-         << round + 1 << ", its pairs with '" << scene.walls()[wall].name << "' modelled";
+         << " (a push from below its centre, which the support cannot hold down): from round "
+         << round + 1 << " the plan pushes it only as '" << scene.walls()[wall].name
+         << "' holds it";
     rounds_note += note.str();
-    for (int c : scene.freeBodyCollisionBodies(b)) {
-      outcome.decisions.push_back({{c, ContactPair::Kind::kWall, wall},
-                                   true,
-                                   "modelled from round " + std::to_string(round + 1) +
-                                       ": the plan of round " + std::to_string(round) +
-                                       " would lift the body off its support"});
-    }
-    for (SceneTask* t : tasks) t->scene.bodies()[b].support = SupportMode::kNone;
-    outcome.released_supports.push_back(b);
-    released = true;
+    for (SceneTask* t : tasks) t->bodies[b].hold_on_support = true;
+    outcome.held_on_support.push_back(b);
+    held = true;
   }
-  return released;
+  return held;
 }
 
 }  // namespace
@@ -445,8 +439,8 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
   }
   Stopwatch stopwatch;
   SceneOutcome outcome;
-  // The task as solved: with the supports that earlier solves found pulling released.
-  SceneTask current = withReleasedSupports(task, options, outcome.released_supports);
+  // The task as solved: with the bodies that earlier solves found lifted held on their supports.
+  SceneTask current = withHeldBodies(task, options, outcome.held_on_support);
   if (!prepare(current, limits, true, outcome)) return outcome;
   if (!options.prune_pairs) {
     for (PairDecision& decision : outcome.decisions) decision.modelled = true;
@@ -487,7 +481,7 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     }
   }
   std::string rounds_note;
-  bool pairs_added = false;  // the round before added pairs (a lazy round follows)
+  bool pairs_added = false;  // the round before added pairs or held bodies (a lazy round follows)
   for (int round = 1;; ++round) {
     const MovingPart part = movingPartOf(aimed, outcome);
     OcpOptions ocp_options = options.ocp;
@@ -595,7 +589,7 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     pairs_added = measureGaps(aimed, options, round - outcome.graze_rounds, outcome, rounds_note);
     if (pairs_added) continue;
     if (outcome.status != SolveStatus::kSuccess) break;
-    pairs_added = releasePullingSupports({&aimed, &current}, round, outcome, rounds_note);
+    pairs_added = holdLiftedBodies({&aimed, &current}, round, outcome, rounds_note);
     if (pairs_added) continue;
     outcome.grazes = planGrazes(aimed, outcome.trajectory, outcome.modelled, options.graze_depth);
     if (outcome.graze_rounds >= options.max_graze_rounds ||

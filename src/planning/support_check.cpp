@@ -2,50 +2,31 @@
 #include "fesd_trajopt/planning/support_check.h"
 
 #include <algorithm>
-#include <memory>
 
 namespace fesd {
 
 std::vector<double> supportLifts(const SceneTask& task, const Trajectory& plan,
                                  const std::vector<ContactPair>& modelled) {
   const Scene& scene = task.scene;
-  const int bodies = static_cast<int>(scene.bodies().size());
-  std::vector<double> lifts(bodies, 0.0);
-  // Per state coordinate: the supported body whose height it is and the support's normal's z.
-  std::vector<int> body_of(scene.stateSize(), -1);
-  std::vector<double> normal_z(bodies, 0.0);
-  bool any = false;
-  for (int b = 0; b < bodies; ++b) {
-    const int support = scene.supportOf(b);
-    if (support < 0) continue;
-    body_of[scene.stateIndex(b) + 2] = b;
-    normal_z[b] = scene.walls()[support].normal(2);
-    any = true;
-  }
-  if (!any || modelled.empty()) return lifts;
-  // The constraints' gradients are the forces' directions; the velocity masks the held part.
-  const std::shared_ptr<const DcsModel> model = scene.model(modelled);
-  const SmoothFunction& constraints = *model->constraints();
-  const SparsityPattern& pattern = constraints.jacobianPattern();
-  std::vector<double> values(pattern.nonzeros());
-  std::vector<double> speed(bodies);
+  std::vector<double> lifts(scene.bodies().size(), 0.0);
+  const SupportLiftRates lift = scene.supportLiftRates(modelled, scene.supportedBodies());
+  if (!lift.rates) return lifts;
+  const int nx = scene.stateSize(), nu = scene.controlSize();
+  const int nc = static_cast<int>(modelled.size());
+  // The rates do not depend on u: zeros in its place.
+  Eigen::VectorXd input = Eigen::VectorXd::Zero(nx + nu + nc);
+  Eigen::VectorXd rates(lift.bodies.size());
   for (const ElementValues& element : plan.elements) {
     const int stages = static_cast<int>(element.stage_states.cols());
-    if (element.stage_multipliers.rows() != static_cast<int>(modelled.size())) continue;
-    std::vector<double> mean(bodies, 0.0);
+    if (element.stage_multipliers.rows() != nc) continue;
     for (int j = 0; j < stages; ++j) {
-      const Eigen::VectorXd x = element.stage_states.col(j);
-      constraints.evaluateJacobian(x.data(), values.data());
-      std::fill(speed.begin(), speed.end(), 0.0);
-      for (int e = 0; e < pattern.nonzeros(); ++e) {
-        const int b = body_of[pattern.cols[e]];
-        if (b >= 0) speed[b] += element.stage_multipliers(pattern.rows[e], j) * values[e];
-      }
-      for (int b = 0; b < bodies; ++b) {
-        mean[b] += std::max(0.0, normal_z[b] * speed[b]) / stages;
+      input.head(nx) = element.stage_states.col(j);
+      input.tail(nc) = element.stage_multipliers.col(j);
+      lift.rates->evaluate(input.data(), rates.data());
+      for (size_t i = 0; i < lift.bodies.size(); ++i) {
+        lifts[lift.bodies[i]] += element.step * std::max(0.0, rates(i)) / stages;
       }
     }
-    for (int b = 0; b < bodies; ++b) lifts[b] += element.step * mean[b];
   }
   return lifts;
 }

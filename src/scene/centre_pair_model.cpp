@@ -364,20 +364,29 @@ class CentreConstraints : public SmoothFunction {
   mutable std::vector<double> scratch_;
 };
 
-/// v(x, u, lambda) = B u + diag(mobility) sum_k lambda_k grad c_k(x), 0 in the held coordinates
-/// (mobility 0: their entries slot -1, left out of the patterns).
+/// Rows of v(x, u, lambda) = B u + diag(mobility) sum_k lambda_k grad c_k(x): output r is state
+/// coordinate rows[r]'s. A coordinate of mobility 0 has the constant 0 (its entries slot -1, left
+/// out of the patterns), as has every coordinate but the outputs.
 class CentreVelocity : public SmoothFunction {
  public:
-  explicit CentreVelocity(std::shared_ptr<const PairSet> pairs) : pairs_(std::move(pairs)) {
+  CentreVelocity(std::shared_ptr<const PairSet> pairs, std::vector<double> mobility,
+                 const std::vector<int>& rows, bool actuated)
+      : pairs_(std::move(pairs)), mobility_(std::move(mobility)) {
     const CentrePairSystem& system = pairs_->system();
     nx_ = system.state_size;
     nu_ = system.control_size;
-    mobility_ = system.mobility;
+    outputs_ = static_cast<int>(rows.size());
     mobility_.resize(nx_, 1.0);
-    for (double m : mobility_) held_.push_back(m == 0.0);
+    output_.assign(nx_, -1);
+    for (int r = 0; r < outputs_; ++r) output_[rows[r]] = r;
+    for (int i = 0; i < nx_; ++i) {
+      if (mobility_[i] == 0.0) output_[i] = -1;
+    }
     PatternBuilder jacobian, hessian;
-    for (const auto& [state, control] : system.actuation) {
-      actuation_slots_.push_back(held_[state] ? -1 : jacobian.slot(state, nx_ + control));
+    if (actuated) actuation_ = system.actuation;
+    for (const auto& [state, control] : actuation_) {
+      actuation_slots_.push_back(output_[state] < 0 ? -1
+                                                    : jacobian.slot(output_[state], nx_ + control));
     }
     for (int k = 0; k < pairs_->size(); ++k) {
       const PairLayout& layout = pairs_->layout(k);
@@ -385,7 +394,7 @@ class CentreVelocity : public SmoothFunction {
       const int n = static_cast<int>(v.size());
       PairSlots slots;
       for (const auto& [i, j] : layout.hessian_entries) {
-        slots.curvature.push_back(held_[v[i]] ? -1 : jacobian.slot(v[i], v[j]));
+        slots.curvature.push_back(output_[v[i]] < 0 ? -1 : jacobian.slot(output_[v[i]], v[j]));
       }
       for (int i : layout.hessian_rows) slots.mixed.push_back(hessian.slot(nx_ + nu_ + k, v[i]));
       for (int i = 0; layout.curved && i < n; ++i) {
@@ -397,8 +406,8 @@ class CentreVelocity : public SmoothFunction {
     for (int k = 0; k < pairs_->size(); ++k) {
       const PairLayout& layout = pairs_->layout(k);
       for (int i : layout.gradient_entries) {
-        const int state = layout.variables[i];
-        slots_[k].gradient.push_back(held_[state] ? -1 : jacobian.slot(state, nx_ + nu_ + k));
+        const int row = output_[layout.variables[i]];
+        slots_[k].gradient.push_back(row < 0 ? -1 : jacobian.slot(row, nx_ + nu_ + k));
       }
     }
     jacobian_ = jacobian.pattern;
@@ -408,12 +417,12 @@ class CentreVelocity : public SmoothFunction {
   }
 
   int inputSize() const override { return nx_ + nu_ + pairs_->size(); }
-  int outputSize() const override { return nx_; }
+  int outputSize() const override { return outputs_; }
 
   void evaluate(const double* z, double* v) const override {
-    std::fill(v, v + nx_, 0.0);
-    for (const auto& [state, control] : pairs_->system().actuation) {
-      if (!held_[state]) v[state] += z[nx_ + control];
+    std::fill(v, v + outputs_, 0.0);
+    for (const auto& [state, control] : actuation_) {
+      if (output_[state] >= 0) v[output_[state]] += z[nx_ + control];
     }
     pairs_->setState(z);
     for (int k = 0; k < pairs_->size(); ++k) {
@@ -423,7 +432,7 @@ class CentreVelocity : public SmoothFunction {
       pairs_->derivatives(k, gradient_.data(), nullptr);
       for (size_t e = 0; e < layout.gradient_entries.size(); ++e) {
         const int state = layout.variables[layout.gradient_entries[e]];
-        if (!held_[state]) v[state] += mobility_[state] * lambda * gradient_[e];
+        if (output_[state] >= 0) v[output_[state]] += mobility_[state] * lambda * gradient_[e];
       }
     }
   }
@@ -461,7 +470,8 @@ class CentreVelocity : public SmoothFunction {
       const int n = static_cast<int>(layout.variables.size());
       // w . v weighs coordinate i's contact term by its mobility (0: held).
       const auto weight = [&](int i) {
-        return mobility_[layout.variables[i]] * weights[layout.variables[i]];
+        const int row = output_[layout.variables[i]];
+        return row < 0 ? 0.0 : mobility_[layout.variables[i]] * weights[row];
       };
       bool weighted = false;
       for (int i = 0; i < n; ++i) weighted = weighted || weight(i) != 0.0;
@@ -500,9 +510,10 @@ class CentreVelocity : public SmoothFunction {
     std::vector<int> curvature, gradient, mixed, third;
   };
   std::shared_ptr<const PairSet> pairs_;
-  int nx_, nu_;
-  std::vector<double> mobility_;                           ///< per state coordinate
-  std::vector<bool> held_;                                 ///< mobility 0
+  int nx_, nu_, outputs_;
+  std::vector<double> mobility_;  ///< per state coordinate
+  std::vector<int> output_;       ///< per state coordinate: its output row, -1 for none
+  std::vector<std::pair<int, int>> actuation_;
   mutable std::vector<double> gradient_, hessian_values_;  ///< one pair's, PairSet's buffers
   std::vector<int> actuation_slots_;
   std::vector<PairSlots> slots_;
@@ -527,10 +538,24 @@ double centrePairValue(const CentreEvaluator& evaluator, const CentrePair& pair)
 std::shared_ptr<const DcsModel> centrePairModel(const CentrePairSystem& system,
                                                 const std::string& name) {
   auto pairs = std::make_shared<const PairSet>(system);
+  std::vector<int> every(system.state_size);
+  for (int i = 0; i < system.state_size; ++i) every[i] = i;
   return std::make_shared<DcsModel>(
       system.state_size, system.control_size, static_cast<int>(system.pairs.size()),
-      std::make_shared<CentreVelocity>(pairs), std::make_shared<CentreConstraints>(pairs), name,
-      system.constraint_scales);
+      std::make_shared<CentreVelocity>(pairs, system.mobility, every, true),
+      std::make_shared<CentreConstraints>(pairs), name, system.constraint_scales);
+}
+
+std::shared_ptr<const SmoothFunction> heldCoordinateRates(
+    const CentrePairSystem& system, const std::vector<std::pair<int, double>>& held) {
+  std::vector<double> direction(system.state_size, 0.0);
+  std::vector<int> rows;
+  for (const auto& [coordinate, sign] : held) {
+    direction[coordinate] = sign;
+    rows.push_back(coordinate);
+  }
+  return std::make_shared<CentreVelocity>(std::make_shared<const PairSet>(system), direction, rows,
+                                          false);
 }
 
 }  // namespace fesd

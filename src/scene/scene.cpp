@@ -386,7 +386,7 @@ std::vector<double> Scene::pairGaps(const std::vector<ContactPair>& pairs,
   return gaps;
 }
 
-std::shared_ptr<const DcsModel> Scene::model(const std::vector<ContactPair>& pairs) const {
+CentrePairSystem Scene::centreSystem(const std::vector<ContactPair>& pairs) const {
   if (dimension_ != 2 && dimension_ != 3) {
     throw std::invalid_argument("Scene: dimension must be 2 or 3");
   }
@@ -420,9 +420,7 @@ std::shared_ptr<const DcsModel> Scene::model(const std::vector<ContactPair>& pai
       }
     }
   }
-  for (int b = 0; b < static_cast<int>(bodies_.size()); ++b) {
-    if (supportOf(b) >= 0) system.mobility[stateIndex(b) + 2] = 0.0;
-  }
+  for (int b : supportedBodies()) system.mobility[stateIndex(b) + 2] = 0.0;
   const std::vector<CollisionBody> bodies = collisionBodies();
   system.constraint_scales.resize(pairs.size());
   for (size_t k = 0; k < pairs.size(); ++k) {
@@ -432,7 +430,41 @@ std::shared_ptr<const DcsModel> Scene::model(const std::vector<ContactPair>& pai
     system.constraint_scales(k) =
         pairs[k].kind == ContactPair::Kind::kWall ? 1.0 : 2.0 * pairSize(pairs[k]);
   }
-  return centrePairModel(system, "scene");
+  return system;
+}
+
+std::shared_ptr<const DcsModel> Scene::model(const std::vector<ContactPair>& pairs) const {
+  return centrePairModel(centreSystem(pairs), "scene");
+}
+
+std::vector<int> Scene::supportedBodies() const {
+  std::vector<int> supported;
+  for (int b = 0; b < static_cast<int>(bodies_.size()); ++b) {
+    if (supportOf(b) >= 0) supported.push_back(b);
+  }
+  return supported;
+}
+
+SupportLiftRates Scene::supportLiftRates(const std::vector<ContactPair>& pairs,
+                                         const std::vector<int>& bodies_asked) const {
+  // A body no pair touches has the rate 0 at every state: no row for it.
+  const std::vector<CollisionBody> bodies = collisionBodies();
+  std::vector<bool> touched(bodies_.size(), false);
+  for (const ContactPair& pair : pairs) {
+    if (bodies[pair.body].free_body >= 0) touched[bodies[pair.body].free_body] = true;
+    if (pair.kind == ContactPair::Kind::kBody && bodies[pair.other].free_body >= 0) {
+      touched[bodies[pair.other].free_body] = true;
+    }
+  }
+  SupportLiftRates lift;
+  std::vector<std::pair<int, double>> held;
+  for (int b : bodies_asked) {
+    if (supportOf(b) < 0 || !touched[b]) continue;
+    lift.bodies.push_back(b);
+    held.emplace_back(stateIndex(b) + 2, walls_[supportOf(b)].normal(2));
+  }
+  if (!held.empty()) lift.rates = heldCoordinateRates(centreSystem(pairs), held);
+  return lift;
 }
 
 }  // namespace fesd

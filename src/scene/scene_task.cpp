@@ -505,6 +505,20 @@ OcpDefinition buildOcp(const SceneTask& task, const std::vector<ContactPair>& mo
   const int dim = scene.dimension(), nx = scene.stateSize(), nu = scene.controlSize();
   OcpDefinition ocp;
   ocp.model = scene.model(modelled);
+  // A held body is pushed only as its support holds it. Its rates may spend half the lift the
+  // check allows over the horizon: a bound of 0 would hold weakly active wherever no force acts,
+  // as degenerate as the pair with the support it replaces.
+  std::vector<int> held;
+  for (size_t b = 0; b < task.bodies.size(); ++b) {
+    if (task.bodies[b].hold_on_support) held.push_back(static_cast<int>(b));
+  }
+  const SupportLiftRates lift = scene.supportLiftRates(modelled, held);
+  ocp.force_constraints = lift.rates;
+  ocp.force_upper.resize(lift.bodies.size());
+  for (size_t i = 0; i < lift.bodies.size(); ++i) {
+    ocp.force_upper(i) =
+        0.5 * kSupportLiftTolerance * boundingRadius(scene.bodies()[lift.bodies[i]]) / task.horizon;
+  }
   ocp.initial_state = scene.initialState();
   ocp.horizon = task.horizon;
   ocp.num_intervals = task.num_intervals;

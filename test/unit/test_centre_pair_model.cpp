@@ -229,4 +229,36 @@ TEST(CentrePairModel, MobilityScalesTheContactTermsAndZeroHoldsACoordinate) {
   EXPECT_LT(pattern.nonzeros(), plain->velocity()->jacobianPattern().nonzeros());
 }
 
+TEST(CentrePairModel, HeldCoordinateRatesAreTheFreeVelocityAlongTheirDirections) {
+  fesd::CentrePairSystem held = mixedSystem("panda_spherized.urdf", 3);
+  const int nq = held.robot->numCoordinates(), body1_z = nq + 3 + 2, body0_y = nq + 1;
+  held.mobility.assign(held.state_size, 1.0);
+  held.mobility[body1_z] = held.mobility[body0_y] = 0.0;
+  const auto rates = fesd::heldCoordinateRates(held, {{body1_z, 1.0}, {body0_y, -1.0}});
+  const auto free = fesd::centrePairModel(mixedSystem("panda_spherized.urdf", 3), "free");
+  ASSERT_EQ(rates->inputSize(), free->velocity()->inputSize());
+  ASSERT_EQ(rates->outputSize(), 2);
+  const int nx = held.state_size, nu = held.control_size;
+  std::mt19937 random(47);
+  for (int trial = 0; trial < 5; ++trial) {
+    const Eigen::VectorXd z = fesd_test::randomVector(rates->inputSize(), random);
+    const auto derivatives =
+        fesd_test::checkAgainstFiniteDifferences(*rates, z, fesd_test::randomVector(2, random));
+    EXPECT_LT(derivatives.jacobian, fesd_test::kTolerance);
+    EXPECT_LT(derivatives.hessian, fesd_test::kTolerance);
+    // The contacts' share of a free body's velocity: without the commands (body0 is actuated).
+    Eigen::VectorXd forces_only = z;
+    forces_only.segment(nx, nu).setZero();
+    Eigen::VectorXd v(nx), r(2);
+    free->velocity()->evaluate(forces_only.data(), v.data());
+    rates->evaluate(z.data(), r.data());
+    EXPECT_NEAR(r(0), v(body1_z), 1e-12);
+    EXPECT_NEAR(r(1), -v(body0_y), 1e-12);
+  }
+  // Only the held rows' entries: the pairs' forces on those coordinates.
+  const fesd::SparsityPattern& pattern = rates->jacobianPattern();
+  for (int e = 0; e < pattern.nonzeros(); ++e) EXPECT_LT(pattern.rows[e], 2);
+  EXPECT_LT(pattern.nonzeros(), free->velocity()->jacobianPattern().nonzeros() / 4);
+}
+
 }  // namespace

@@ -16,6 +16,16 @@ namespace {
 using fesd_test::beadModel;
 using fesd_test::kTolerance;
 
+constexpr double kForceUpper = 0.3125;
+
+/// A constraint on the bead's (x, u, lambda): forces weighed by the state, and a control.
+std::shared_ptr<const fesd::SmoothFunction> beadForces() {
+  return fesd::makeAutoDiffFunction(7, 1, [](const auto* z, auto* g) {
+    using std::sin;
+    g[0] = z[5] * z[0] * z[0] + z[6] * sin(z[1]) + z[3] * z[2];
+  });
+}
+
 /// A full OCP on the nonlinear model: every kind of NLP piece is present.
 fesd::OcpDefinition beadOcp() {
   fesd::OcpDefinition ocp;
@@ -39,6 +49,8 @@ fesd::OcpDefinition beadOcp() {
   });
   ocp.terminal_constraints = fesd::makeAutoDiffFunction(
       3, 1, [](const auto* x, auto* g) { g[0] = x[0] * x[0] + x[2] - 2.0; });
+  ocp.force_constraints = beadForces();
+  ocp.force_upper = Eigen::VectorXd::Constant(1, kForceUpper);
   return ocp;
 }
 
@@ -136,6 +148,48 @@ TEST(NlpStructure, StandardMethodHasNoCrossComplementarityOrEquilibration) {
             boundaries * (8 * constraints + 1));
   EXPECT_FALSE(without.stepsAreFree());
   EXPECT_TRUE(with.stepsAreFree());
+}
+
+TEST(NlpStructure, ForceConstraintsBoundEveryStagePoint) {
+  fesd::DiscretizationOptions options;
+  options.num_elements = 3;
+  fesd::OcpDefinition free = beadOcp();
+  free.force_constraints = nullptr;
+  free.force_upper.resize(0);
+  fesd::PdsDiscretization bounded(beadOcp(), options), unbounded(free, options);
+  const fesd::NlpAssembly& nlp = bounded.nlp();
+  const int elements = 6, stages = 2;
+  ASSERT_EQ(nlp.numConstraints() - unbounded.nlp().numConstraints(), elements * stages);
+  std::vector<double> x_lower(nlp.numVariables()), x_upper(nlp.numVariables());
+  std::vector<double> g_lower(nlp.numConstraints()), g_upper(nlp.numConstraints());
+  nlp.getBounds(x_lower.data(), x_upper.data(), g_lower.data(), g_upper.data());
+  std::vector<int> rows;
+  for (int r = 0; r < nlp.numConstraints(); ++r) {
+    if (g_upper[r] == kForceUpper) rows.push_back(r);
+  }
+  ASSERT_EQ(static_cast<int>(rows.size()), elements * stages);
+  // Their values are g_f at the stage points' states, multipliers and interval's control.
+  std::mt19937 random(23);
+  const Eigen::VectorXd point = fesd_test::randomVector(nlp.numVariables(), random);
+  std::vector<double> g(nlp.numConstraints());
+  nlp.constraints(point.data(), g.data());
+  const fesd::Trajectory trajectory = bounded.extract(point.data());
+  const auto forces = beadForces();
+  int row = 0;
+  for (int e = 0; e < elements; ++e) {
+    const fesd::ElementValues& element = trajectory.elements[e];
+    for (int j = 0; j < stages; ++j) {
+      Eigen::VectorXd z(7), value(1);
+      z << element.stage_states.col(j), trajectory.controls[e / 3],
+          element.stage_multipliers.col(j);
+      forces->evaluate(z.data(), value.data());
+      EXPECT_NEAR(g[rows[row++]], value(0), 1e-12) << e << " " << j;
+      EXPECT_EQ(g_lower[rows[row - 1]], -fesd::NlpAssembly::kInfinity);
+    }
+  }
+  fesd::OcpDefinition wrong = beadOcp();
+  wrong.force_upper = Eigen::VectorXd::Zero(2);
+  EXPECT_THROW(fesd::PdsDiscretization(wrong, options), std::invalid_argument);
 }
 
 }  // namespace

@@ -375,4 +375,39 @@ TEST(SceneSupports, ABodyRestingOnALevelWallSlidesOnIt) {
   EXPECT_EQ(planar.supportOf(0), -1);
 }
 
+TEST(SceneSupports, LiftRatesAreTheHeldHeightsFreeVelocityForTheBodiesAPairTouches) {
+  const fesd::Scene scene = tableScene();
+  const std::vector<fesd::ContactPair> pairs = scene.allPairs();
+  const fesd::SupportLiftRates lift = scene.supportLiftRates(pairs, {0, 1});
+  ASSERT_EQ(lift.bodies, std::vector<int>{1});  // the pusher floats
+  ASSERT_TRUE(lift.rates);
+  // The puck's height rate in the model where it floats (its pairs with the table are last).
+  fesd::Scene floating = scene;
+  floating.bodies()[1].support = fesd::SupportMode::kNone;
+  const auto free = floating.model(pairs);
+  std::mt19937 random(5);
+  const int nx = scene.stateSize(), nu = scene.controlSize();
+  for (int trial = 0; trial < 3; ++trial) {
+    Eigen::VectorXd z = fesd_test::randomVector(lift.rates->inputSize(), random, 0.1, 1.0);
+    z.segment(nx, nu).setZero();
+    Eigen::VectorXd rate(1), v(nx);
+    lift.rates->evaluate(z.data(), rate.data());
+    free->velocity()->evaluate(z.data(), v.data());
+    EXPECT_NEAR(rate(0), v(scene.stateIndex(1) + 2), 1e-12);
+    const auto derivatives = checkAgainstFiniteDifferences(*lift.rates, z, randomVector(1, random));
+    EXPECT_LT(derivatives.jacobian, kTolerance);
+    EXPECT_LT(derivatives.hessian, kTolerance);
+  }
+  // No pair of the puck: no rate to bound.
+  std::vector<fesd::ContactPair> pusher_only;
+  for (const fesd::ContactPair& pair : pairs) {
+    if (scene.pairName(pair).rfind("pusher/", 0) == 0 && scene.pairName(pair) != "pusher/puck") {
+      pusher_only.push_back(pair);
+    }
+  }
+  ASSERT_FALSE(pusher_only.empty());
+  EXPECT_FALSE(scene.supportLiftRates(pusher_only, {0, 1}).rates);
+  EXPECT_FALSE(scene.supportLiftRates(pairs, {0}).rates);
+}
+
 }  // namespace

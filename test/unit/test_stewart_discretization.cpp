@@ -1,6 +1,8 @@
 // Stewart's discretisation (Nurkanovic et al. 2024, Sec. 3; stewart_discretization.cpp): the
 // NLP's derivatives against central finite differences, and the structure of its FESD and
 // standard discretisations.
+#include <stdexcept>
+
 #include <gtest/gtest.h>
 
 #include "fesd_trajopt/discretization/stewart_discretization.h"
@@ -98,6 +100,14 @@ TEST(StewartNlpStructure, FreeInitialStateIsReleasedWithinItsBounds) {
   EXPECT_EQ(discretization.nlp().variableUpper(start), 0.25);
   discretization.releaseInitialState();
   EXPECT_EQ(discretization.nlp().variableUpper(start), 3.0);
+}
+
+TEST(StewartNlpStructure, ForceConstraintsAreRefused) {
+  // A Filippov system has no contact forces to bound.
+  fesd::OcpDefinition ocp = smallSlidingOcp();
+  ocp.force_constraints = ocp.path_constraints;
+  EXPECT_THROW(fesd::StewartDiscretization(ocp, fesd::DiscretizationOptions{}),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -89,6 +89,8 @@ class PdsDiscretization : public CollocationDiscretization {
   void buildStepEquilibration();
   /// Rows c_k(x(fraction)) >= 0 on the element's polynomial for every gap guard.
   void buildGapGuards();
+  /// Rows g_f(x, u, lambda) <= 0 at every stage point (OcpDefinition::force_constraints).
+  void buildForceConstraints();
   /// The paper's auxiliaries (pi, max, nu, OR) and big-M rows at every boundary (kBigM).
   void addBigMEquilibration();
   /// The polishing counterpart of step equilibration (NlpAssembly's active-set hook): with the

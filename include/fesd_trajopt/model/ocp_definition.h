@@ -14,7 +14,8 @@ namespace fesd {
 ///   min  int_0^T L(x, u) dt + R(x(T))
 ///   s.t. x(0) = x0 (or x0_lower <= x(0) <= x0_upper), the system's dynamics, u piecewise constant
 ///   on num_intervals equal intervals,
-///        u_lower <= u <= u_upper, x_lower <= x <= x_upper, g_p(x, u) <= 0, g_t(x(T)) <= 0.
+///        u_lower <= u <= u_upper, x_lower <= x <= x_upper, g_p(x, u) <= 0, g_t(x(T)) <= 0,
+///        g_f(x, u, lambda) <= g_f_upper.
 /// Every function is optional; with none and fixed controls this is a simulation.
 struct OcpDefinition {
   std::shared_ptr<const DynamicsModel> model;
@@ -31,6 +32,10 @@ struct OcpDefinition {
   std::shared_ptr<const SmoothFunction> path_constraints;  ///< g_p on (x, u), <= 0
   std::shared_ptr<const SmoothFunction> terminal_constraints;  ///< g_t on x, <= 0
   bool path_constraints_at_all_stages = false;                 ///< else only at element boundaries
+  /// g_f on a PDS's (x, u, lambda), <= force_upper at every stage point: forces a plan must not
+  /// need (a support that would have to pull, Scene::supportLiftRates). A simulation has none.
+  std::shared_ptr<const SmoothFunction> force_constraints;
+  Eigen::VectorXd force_upper;  ///< per output of g_f; empty: 0
 };
 
 }  // namespace fesd

@@ -85,9 +85,10 @@ struct SceneOutcome {
   double length_scale = 1.0;
   /// Per body: the wall it slid on (Scene::supportOf), -1 when it floated.
   std::vector<int> supports;
-  /// Bodies whose support a plan would have had to pull (supportLifts): they float from the round
-  /// after, their pairs with that wall modelled; a finer rung or a replan starts so.
-  std::vector<int> released_supports;
+  /// Bodies whose support a plan would have had to pull (supportLifts): from the round after, the
+  /// plan pushes them only as their support holds them (BodyTask::hold_on_support); a finer rung
+  /// or a replan starts so.
+  std::vector<int> held_on_support;
   /// The first guess's residual in the NLP's equations (NlpAssembly::equalityResidual at its
   /// point on the first round's grid): how far it is from dynamics consistent with its contacts.
   /// NaN when the solve started from a previous solution (and its guess was not needed).

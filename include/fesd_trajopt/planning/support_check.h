@@ -15,8 +15,4 @@ namespace fesd {
 std::vector<double> supportLifts(const SceneTask& task, const Trajectory& plan,
                                  const std::vector<ContactPair>& modelled);
 
-/// A plan lifts a supported body when its lift exceeds this fraction of the body's radius: the
-/// body floats from then on (SupportMode::kNone) and its pairs with the wall are modelled.
-constexpr double kSupportLiftTolerance = 1e-3;
-
 }  // namespace fesd

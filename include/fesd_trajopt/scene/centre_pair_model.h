@@ -51,4 +51,11 @@ struct CentrePairSystem {
 std::shared_ptr<const DcsModel> centrePairModel(const CentrePairSystem& system,
                                                 const std::string& name);
 
+/// Per held coordinate i (mobility 0) with a direction s_i: the rate s_i sum_k lambda_k dc_k/dx_i
+/// at which the contacts' forces would move it were it free (mobility 1), on (x, u, lambda) as
+/// the model's velocity, with the same exact sparse derivatives. A support holds a body's height
+/// by pushing only: its rate along the support's normal must stay <= 0.
+std::shared_ptr<const SmoothFunction> heldCoordinateRates(
+    const CentrePairSystem& system, const std::vector<std::pair<int, double>>& held);
+
 }  // namespace fesd

@@ -30,6 +30,9 @@ enum class SupportMode { kAuto, kNone, kWall };
 /// A body rests on a wall when its lowest sphere's gap to it is within this fraction of that
 /// sphere's radius (either side).
 constexpr double kRestingTolerance = 1e-2;
+/// A plan lifts a supported body when its lift (planning/support_check.h) exceeds this fraction of
+/// the body's radius: the body floats from then on and its pairs with the wall are modelled.
+constexpr double kSupportLiftTolerance = 1e-3;
 
 /// A free disc (2-D) or sphere (3-D): a link on a translation joint from the world, or on a
 /// planar joint when it turns. Actuated bodies are velocity-controlled (pdot = u); passive ones
@@ -78,6 +81,14 @@ struct CollisionBody {
   CollisionCentre centre;
   int sphere = -1;     ///< the robot sphere, -1 for a free body's
   int free_body = -1;  ///< the free body it belongs to, -1 for a robot sphere
+};
+
+/// Per supported body a pair touches (`bodies`, ascending), on Scene::model(pairs)'s
+/// (x, u, lambda): the rate at which the pairs' forces would move it along its support's normal
+/// were its height free (heldCoordinateRates); rates null without such a body.
+struct SupportLiftRates {
+  std::vector<int> bodies;
+  std::shared_ptr<const SmoothFunction> rates;
 };
 
 /// A contact the model may enforce: collision body `body` (Scene::collisionBodies) against
@@ -200,6 +211,11 @@ class Scene {
 
   /// The DCS with the given pairs as its constraints, in that order.
   std::shared_ptr<const DcsModel> model(const std::vector<ContactPair>& pairs) const;
+  /// The rates at which the pairs' forces would lift those of `bodies` that have a support and
+  /// that a pair touches off their supports were they free. A support only pushes: a plan keeps
+  /// these <= 0.
+  SupportLiftRates supportLiftRates(const std::vector<ContactPair>& pairs,
+                                    const std::vector<int>& bodies) const;
 
   /// Whether a wall is level: its normal along +-z (in a spatial scene).
   bool isLevel(int wall) const;
@@ -210,8 +226,12 @@ class Scene {
   /// The wall a free body slides on (SceneBody::support): kWall's wall, the one level wall it
   /// rests on (kAuto), else -1 (it floats; always in a planar scene, and for kAuto on two).
   int supportOf(int body) const;
+  /// The free bodies with a support (supportOf >= 0), ascending.
+  std::vector<int> supportedBodies() const;
 
  private:
+  /// The centre pairs, actuation and mobilities that model(pairs) is made of.
+  CentrePairSystem centreSystem(const std::vector<ContactPair>& pairs) const;
   CentrePair centrePair(const std::vector<CollisionBody>& bodies, const ContactPair& pair) const;
   bool linksMayCollide(int sphere_a, int sphere_b) const;
   int freeCollisionBodies() const;

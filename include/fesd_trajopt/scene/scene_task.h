@@ -22,6 +22,10 @@ struct BodyTask {
   /// start: the target is met as given, not modulo 2 pi).
   double target_yaw = 0.0;
   double target_yaw_weight = 0.0;
+  /// On a support: the plan pushes the body only as its support holds it (the pairs' lift rates
+  /// within kSupportLiftTolerance, Scene::supportLiftRates). solveSceneTask sets it from the
+  /// round after one whose plan would have lifted the body.
+  bool hold_on_support = false;
 
   /// A target the cost weighs.
   bool hasTarget() const { return target.size() && target_weight > 0.0; }
