@@ -6,10 +6,12 @@
 
 #include <Eigen/Geometry>
 
+#include "fesd_trajopt/kinematics/body_clearance.h"
 #include "fesd_trajopt/kinematics/forward_kinematics.h"
 #include "fesd_trajopt/kinematics/inverse_kinematics.h"
 #include "fesd_trajopt/planning/bounding_discs.h"
 #include "fesd_trajopt/planning/push_plan.h"
+#include "fesd_trajopt/scene/collision_centres.h"
 
 namespace fesd {
 namespace {
@@ -193,16 +195,43 @@ RobotGuess planRobotGuess(const SceneTask& task, const std::vector<ContactPair>&
     Eigen::VectorXd q = scene.initialJoints();
     InverseKinematicsOptions ik;
     for (const JointTask& joint : task.joints) ik.held.push_back(joint.passive);
+    const int first = scene.stateIndex(body);
+    // The pushed body's spheres where the plan has them at t: the guess touches the body with the
+    // pusher only, so the arm's other spheres are kept out of them (out, not a margin away: with
+    // a margin the planar arm's turning bar got far slower or missed its target; results.md).
+    const std::vector<int> body_spheres = scene.freeBodyCollisionBodies(body);
+    const std::vector<CollisionBody> collision_bodies = scene.collisionBodies();
+    SpheresToClear clear;
+    clear.planar = dim == 2;
+    for (int c : body_spheres) clear.radii.push_back(collision_bodies[c].radius);
+    CentreEvaluator evaluator(scene.robotPointer(), dim);
+    const auto bodySpheres = [&](double t) {
+      Eigen::VectorXd x = x0;
+      const Eigen::VectorXd planned = plan.guess.state(t);
+      if (on_table) {
+        x.segment<2>(first) = planned.segment<2>(2);
+        x(first + dim) = planned(4);
+      } else {
+        x.segment(first, dim) = planned.segment(dim, dim);
+      }
+      evaluator.setState(x.data());
+      std::vector<Eigen::Vector3d> centres;
+      for (int c : body_spheres) centres.push_back(evaluator.position(collision_bodies[c].centre));
+      return centres;
+    };
     for (int k = 0; k < boundaries; ++k) {
       const double t = horizon * k / (boundaries - 1);
       Eigen::Vector3d target = start;  // planar: keep the sphere's own z
       target.head(plan_dim) = plan.guess.state(t).head(plan_dim);
       // On the table the sphere pushes at the height of the body's centre: level, no lift.
       if (on_table) target.z() = scene.bodies()[body].position(2);
-      if (k > 0) q = sphereInverseKinematics(scene.robot(), result.pusher_sphere, target, q, ik).q;
+      if (k > 0) {
+        q = sphereInverseKinematics(scene.robot(), result.pusher_sphere, target, q, ik).q;
+        clear.centres = bodySpheres(t);
+        q = clearOfSpheres(scene.robot(), result.pusher_sphere, target, q, clear, ik);
+      }
       result.boundary_joints.push_back(q);
     }
-    const int first = scene.stateIndex(body);
     const auto plan_state = plan.guess.state;
     const auto plan_multipliers = plan.guess.multipliers;
     // Where each of the plan's pairs is in `pairs`: on the table the disc with each of the

@@ -23,7 +23,9 @@ int pushingSphere(const SceneTask& task, int pushed_body);
 ///    to a target yaw on a level support (a table), with nothing else but level walls, the
 ///    turning push plan in the table's plane (the sphere pushing at the body's height);
 ///  - damped least-squares IK (sphereInverseKinematics) of the sphere's path at every element
-///    boundary, each continued from the one before (the first from q0), joints linear in between;
+///    boundary, each continued from the one before (the first from q0), then the robot's other
+///    spheres moved out of the pushed body with the pusher held (clearOfSpheres); joints linear in
+///    between;
 ///  - controls per interval from the joints' motion, clamped to their speed limits; the
 ///    multiplier of the pair (pushed body, pushing sphere) from the push plan, 0 for the others.
 /// Fixed-size arithmetic only, so the same task gives the same guess on every machine.
