@@ -71,8 +71,9 @@ const std::map<std::string, Command>& commands() {
         "    --pds-equilibration=polishing|big-m --big-m=1e9 (step equilibration)\n"
         "    --divergence (per interval: OCP vs fine re-simulation, fine vs twice finer)\n"
         "    --history (per relaxed NLP) --trajectory (per interval; switches)\n"
-        "    homotopy: --sigma0 --kappa --max-steps --relaxed-tolerance-factor --ipopt-tol\n"
-        "    --mu-strategy --cold-mu-strategy --ipopt-print-level --ipopt=name:value,...\n"
+        "    homotopy: --sigma0 --kappa --max-steps --relaxed-tolerance-factor --barrier-factor\n"
+        "    --ipopt-tol --mu-strategy --cold-mu-strategy --ipopt-print-level "
+        "--ipopt=name:value,...\n"
         "    --near-solution-violation=1e-3 (< 0: a plan's point starts Ipopt cold)"}},
       {"ocp-accuracy",
        {fesd_bench::ocpAccuracy,

@@ -340,9 +340,16 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
     std::ostringstream feedback;
     feedback.precision(3);
     feedback << "; executed open loop the plan ends " << solution.open_loop_error
-             << " from its planned end (a deviation grows up to " << solution.open_loop_gain
-             << "-fold by the end): execute it with feedback, replanning from the measured state "
-                "with warm_start";
+             << " from its planned end (";
+    if (std::isfinite(solution.open_loop_gain)) {
+      feedback << "a deviation grows up to " << solution.open_loop_gain << "-fold by the end";
+    } else {
+      const std::string& why = outcome.verification.gain_note;
+      feedback << "no growth of a deviation to tell: "
+               << (why.empty() ? "the sensitivities are undefined" : why);
+    }
+    feedback << "): execute it with feedback, replanning from the measured state with "
+                "warm_start";
     solution.message += feedback.str();
   }
   solution.header.stamp = ros::Time::now();

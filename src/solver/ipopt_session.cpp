@@ -318,6 +318,7 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
   Ipopt::OptionsList& options = *application_->Options();
   options.SetNumericValue("tol", solve_settings.tolerance);
   options.SetNumericValue("obj_scaling_factor", solve_settings.objective_scaling);
+  options.SetNumericValue("mu_target", solve_settings.barrier_target);
   options.SetIntegerValue("max_iter", solve_settings.max_iterations > 0
                                           ? solve_settings.max_iterations
                                           : settings_.max_iterations);

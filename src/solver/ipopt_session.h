@@ -45,6 +45,8 @@ class IpoptSession {
     const std::atomic<bool>* cancel = nullptr;  ///< set: stop at the next iteration
     double warm_start_bound_push = 0.0;         ///< > 0: replaces the session's for this solve
     int max_iterations = 0;                     ///< > 0: replaces the session's for this solve
+    /// Ipopt's mu_target: > 0 ends the solve on the central path at this barrier parameter.
+    double barrier_target = 0.0;
   };
   /// Solves from `point` and overwrites it with Ipopt's final iterate; a point with multipliers
   /// is a warm start.

@@ -477,7 +477,11 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
   std::vector<bool> settled_candidate, polished_set;
   for (int step = 0; step < steps; ++step) {
     problem.setRelaxation(sigma);
-    settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma;
+    // Following the barrier, the previous NLP ended centred at barrier_factor times its sigma.
+    settings.warm_start_mu = options_.barrier_factor > 0.0 && step > 0
+                                 ? options_.barrier_factor * sigma / options_.sigma_reduction
+                                 : options_.ipopt.warm_start_mu_factor * sigma;
+    settings.barrier_target = smooth ? 0.0 : options_.barrier_factor * sigma;
     // A smooth NLP is the whole problem: solved once, at the final tolerance.
     settings.tolerance =
         smooth ? options_.ipopt.tolerance
@@ -523,6 +527,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
         IpoptSession::SolveSettings polish_settings = settings;
         polish_settings.tolerance = options_.ipopt.tolerance;
         polish_settings.max_iterations = options_.polish_iterations;
+        polish_settings.barrier_target = 0.0;
         if (options_.method == MpccMethod::kActiveSet) {
           problem.setRelaxation(std::min(sigma, options_.branch_nlp_sigma));
         }
@@ -566,6 +571,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
   }
   if (!smooth && options_.polish_active_set) {
     settings.tolerance = options_.ipopt.tolerance;
+    settings.barrier_target = 0.0;
     if (report.status == SolveStatus::kSuccess && !report.polished) {
       settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma;
       polish(*session_, options_, problem, point, sigma, settings, options_.polish_attempts, false,

@@ -69,4 +69,14 @@ TEST_P(PostScenes, GoRoundThePostsInLegsReachTheTargetAndVerify) {
 // either planner; they climb the accuracy ladder in the node).
 INSTANTIATE_TEST_SUITE_P(Seeds, PostScenes, ::testing::Values(2u, 3u, 5u, 9u, 11u));
 
+// A pusher going round the puck cuts into it between stage points; a cut held only at its
+// deepest point moved beside it, 4x shallower a round (4 rounds, 81 iterations, here).
+TEST(GrazeRounds, ACutHeldAtItsDeepestPointAndBesideItIsGoneInTwoRounds) {
+  const ps::PlanningScene scene = ps::besideScene(4);
+  const ps::PlanningRun run = solveAndVerify(scene);
+  expectReachedAndVerified(scene, run);
+  EXPECT_LE(run.outcome.graze_rounds, 2) << run.outcome.message;
+  EXPECT_TRUE(run.outcome.grazes.empty()) << run.outcome.message;
+}
+
 }  // namespace

@@ -8,20 +8,40 @@ namespace {
 
 using CornerMpcc = fesd_test::CornerMpcc<>;
 
-TEST(MpccSolver, ScholtesHomotopyReachesAStronglyStationaryPoint) {
-  CornerMpcc problem;
-  const fesd::MpccReport report = problem.solve();
+/// The corner problem's strongly stationary point (x, y) = (1, 0), objective 1, to the tolerance.
+void expectTheCorner(const CornerMpcc& problem, const fesd::MpccReport& report) {
   ASSERT_EQ(report.status, fesd::SolveStatus::kSuccess) << report.message;
   EXPECT_NEAR(report.solution[problem.x], 1.0, 1e-6);
   EXPECT_NEAR(report.solution[problem.y], 0.0, 1e-6);
   EXPECT_NEAR(report.objective, 1.0, 1e-6);
   EXPECT_LE(report.complementarity_residual, 1e-9);
+}
+
+TEST(MpccSolver, ScholtesHomotopyReachesAStronglyStationaryPoint) {
+  CornerMpcc problem;
+  const fesd::MpccReport report = problem.solve();
+  expectTheCorner(problem, report);
   // sigma0 = 1, kappa = 0.1 (the notes' defaults): residual ~ sigma, so about ten steps.
   ASSERT_GE(report.history.size(), 2u);
   EXPECT_DOUBLE_EQ(report.history[0].sigma, 1.0);
   EXPECT_DOUBLE_EQ(report.history[1].sigma, 0.1);
   EXPECT_GT(report.iterations, 0);
   EXPECT_GE(report.wall_seconds, report.ipopt_seconds);
+}
+
+TEST(MpccSolver, AHomotopyFollowingTheBarrierReachesTheSameStronglyStationaryPoint) {
+  CornerMpcc problem;
+  fesd::HomotopyOptions options;
+  options.barrier_factor = 1e-2;
+  const fesd::MpccReport report = problem.solve(options);
+  expectTheCorner(problem, report);
+  // Each relaxed NLP ends centred at mu = 1e-2 sigma and the next starts there: once the
+  // corner is decided (sigma 1e-2) a step of the homotopy is a Newton step or two (solved to
+  // convergence each takes 28 iterations at sigma 1e-3, then 1).
+  ASSERT_EQ(report.history.size(), 11u);
+  for (std::size_t step = 3; step < report.history.size(); ++step) {
+    EXPECT_LE(report.history[step].iterations, 2) << "sigma " << report.history[step].sigma;
+  }
 }
 
 TEST(MpccSolver, EarlyPolishingEndsTheHomotopyAtABStationaryPoint) {

@@ -152,8 +152,9 @@ struct SceneSolveOptions {
   /// Pairs whose gaps are kept along whole elements of these intervals from the first round.
   std::vector<PairInterval> held_grazes;
   /// Solves that hold the plan's new grazes (gap guards) before the answer, at most (in every
-  /// scene). A cut left beside the last guard shrinks about 4x a round (a pusher sliding over the
-  /// kinks between a T's spheres: from 5e-4 to 1.2e-6 of depth in 4 rounds).
+  /// scene). A cut held only at its deepest point moved beside it, about 4x shallower a round
+  /// (a pusher sliding over the kinks between a T's spheres: from 5e-4 to 1.2e-6 of depth in 4
+  /// rounds); held beside it too, cluttered seed 7 needs 3 rounds instead of 4.
   int max_graze_rounds = 6;
   const SolveMonitor* monitor = nullptr;  ///< progress and cancel of the solve; not owned
 };

@@ -88,6 +88,10 @@ struct HomotopyOptions {
   /// Inexact homotopy: a relaxed NLP is solved to Ipopt tolerance
   /// max(ipopt.tolerance, relaxed_tolerance_factor * sigma); loose relaxations only guide.
   double relaxed_tolerance_factor = 1e-2;
+  /// A homotopy that follows the barrier: > 0 ends each relaxed NLP on the central path at
+  /// Ipopt's mu = barrier_factor * sigma (mu_target) and starts the next one there (mu_init);
+  /// 0 solves each to its tolerance and starts the next at warm_start_mu_factor * sigma.
+  double barrier_factor = 0.0;
   /// Objective scaling: > 0 is Ipopt's obj_scaling_factor; 0 (default) scales so that the
   /// objective at the initial guess is at most objective_scale_target in size.
   double objective_scaling = 0.0;
