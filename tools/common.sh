@@ -14,7 +14,7 @@ DEBIAN_PACKAGES=(
   build-essential cmake pkg-config
   catkin libroscpp-dev ros-message-generation librostest-dev python3-rostest python3-roslaunch
   libactionlib-dev libactionlib-msgs-dev ros-actionlib-msgs python3-actionlib python3-actionlib-msgs
-  rosbash libvisualization-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libtf2-ros-dev liburdfdom-dev libtinyxml2-dev rviz
+  rosbash libinteractive-markers-dev libvisualization-msgs-dev libgeometry-msgs-dev libnav-msgs-dev libtf2-ros-dev liburdfdom-dev libtinyxml2-dev rviz
   ros-std-msgs ros-geometry-msgs python3-rospy python3-std-msgs python3-geometry-msgs
   python3-visualization-msgs python3-nav-msgs python3-tf2-ros python3-rosservice python3-rostopic python3-rosnode
   coinor-libipopt-dev coinor-libcbc-dev coinor-libclp-dev libsuitesparse-dev libmetis-dev libeigen3-dev

@@ -123,6 +123,7 @@ NodeConfig loadNodeConfig(const ros::NodeHandle& node) {
   node.param("limits/max_sensitivity_entries", c.max_sensitivity_entries,
              c.max_sensitivity_entries);
   node.param("scene_urdf", c.scene_urdf, std::string());
+  node.param("interactive_targets", c.interactive_targets, c.interactive_targets);
   XmlRpc::XmlRpcValue bodies;
   if (node.getParam("bodies", bodies)) {
     if (bodies.getType() != XmlRpc::XmlRpcValue::TypeStruct) {

@@ -55,6 +55,8 @@ struct NodeConfig {
   double max_sensitivity_entries = 4e6;
   std::map<std::string, BodyConfig> bodies;
   std::string scene_urdf;  ///< ~scene_urdf: the default scene
+  /// ~interactive_targets: targets dragged in rviz replan the last request (~targets)
+  bool interactive_targets = true;
 };
 
 /// Reads the private parameters; throws std::runtime_error naming a malformed one.

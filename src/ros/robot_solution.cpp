@@ -1,6 +1,7 @@
 #include "robot_solution.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <tuple>
@@ -39,28 +40,23 @@ std::vector<Eigen::VectorXd> boundaryVelocities(const fesd::SceneTask& task,
 }
 
 /// sceneMarkers draws paths and labels for the node's default scene (metres across); a robot
-/// scene is a tenth of that: thinner paths, smaller labels stacked below the body touched.
-void fitToRobotScale(const fesd_trajopt::Solution& solution,
-                     visualization_msgs::MarkerArray& markers) {
+/// scene is a tenth of that: thinner paths, smaller labels in a column right of the robot and
+/// what it pushes (its spheres are drawn after sceneMarkers placed the labels).
+void fitToRobotScale(visualization_msgs::MarkerArray& markers) {
   constexpr double kPathWidth = 0.008, kLabelHeight = 0.03;
-  size_t label = 0;
+  double right = -INFINITY, top = -INFINITY;
   for (visualization_msgs::Marker& m : markers.markers) {
     if (m.ns == "paths") m.scale.x = kPathWidth;
-    if (m.ns != "switch_labels" || label >= solution.switches.size()) continue;
-    const fesd_trajopt::SwitchEvent& event = solution.switches[label];
-    for (const fesd_trajopt::BodyTrajectory& body : solution.bodies) {
-      // The body touched, or the body whose sphere was.
-      if (!fesd::namesSide(body.name, event.second) || body.positions.empty()) continue;
-      size_t k = 0;  // the element boundary at the switch
-      while (k + 1 < solution.times.size() && solution.times[k] < event.time - 1e-12) ++k;
-      m.pose.position = body.positions[std::min(k, body.positions.size() - 1)];
-      m.pose.position.y -= body.radius + 1.2 * kLabelHeight * (label + 1);
+    if (m.ns == "switch_labels") m.scale.z = kLabelHeight;
+    if (m.type != visualization_msgs::Marker::SPHERE &&
+        m.type != visualization_msgs::Marker::CYLINDER) {
+      continue;
     }
-    m.scale.z = kLabelHeight;
-    ++label;
+    right = std::max(right, m.pose.position.x + 0.5 * m.scale.x);
+    top = std::max(top, m.pose.position.y + 0.5 * m.scale.y);
   }
+  stackSwitchLabels(right + kLabelHeight, top, 1.2 * kLabelHeight, markers);
 }
-
 }  // namespace
 
 void addJointTrajectories(const fesd::SceneTask& task, const fesd::SceneOutcome& outcome,
@@ -98,10 +94,9 @@ void addJointTrajectories(const fesd::SceneTask& task, const fesd::SceneOutcome&
 
 void addRobotMarkers(const fesd::SceneTask& task, const fesd_trajopt::Solution& solution,
                      const std::string& frame_id, visualization_msgs::MarkerArray& markers) {
-  fitToRobotScale(solution, markers);
   const fesd::KinematicModel& robot = task.scene.robot();
   const auto& points = solution.joint_trajectory.points;
-  if (points.empty()) return;
+  if (points.empty()) return fitToRobotScale(markers);
   // After sceneMarkers' ids, so that no marker replaces another.
   int id = static_cast<int>(markers.markers.size());
   fesd::KinematicData data;
@@ -144,6 +139,7 @@ void addRobotMarkers(const fesd::SceneTask& task, const fesd_trajopt::Solution& 
     while (k + 1 < solution.times.size() && solution.times[k] < event.time - 1e-12) ++k;
     spheres("robot_switch_configurations", std::min(k, points.size() - 1), 0.15);
   }
+  fitToRobotScale(markers);
 }
 
 }  // namespace fesd_ros

@@ -324,6 +324,19 @@ fesd_trajopt::Solution sceneSolution(const fesd::SceneTask& task, const fesd::Sc
   return solution;
 }
 
+void stackSwitchLabels(double left, double top, double line_height,
+                       visualization_msgs::MarkerArray& markers) {
+  int line = 0;
+  for (visualization_msgs::Marker& label : markers.markers) {
+    if (label.ns != "switch_labels") continue;
+    // rviz centres a text on its position: half its width (about 0.4 of the height per
+    // character, measured on a screenshot) right of `left` lines the labels up on the left.
+    label.pose.position.x = left + 0.5 * 0.4 * label.scale.z * label.text.size();
+    label.pose.position.y = top - line_height * line++;
+    label.pose.position.z = 0.0;
+  }
+}
+
 visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
                                              const fesd_trajopt::Solution& solution,
                                              const std::string& frame_id,
@@ -401,54 +414,40 @@ visualization_msgs::MarkerArray sceneMarkers(const fesd::SceneTask& task,
     path.color = body_color(b, 1.0);
     markers.markers.push_back(path);
   }
-  std::vector<geometry_msgs::Point> labels_placed;
+  // The switch labels in a column right of everything drawn, one line each in time order: over
+  // the bodies they would hide the plan (sixteen stacked over the push-T).
+  double right = -INFINITY, top = -INFINITY;
+  auto extend = [&](const geometry_msgs::Point& p, double radius) {
+    right = std::max(right, p.x + radius);
+    top = std::max(top, p.y + radius);
+  };
+  for (const fesd_trajopt::BodyTrajectory& body : solution.bodies) {
+    for (const geometry_msgs::Point& p : body.positions) extend(p, body.radius);
+  }
+  for (size_t b = 0; b < task.bodies.size() && b < scene.bodies().size(); ++b) {
+    if (task.bodies[b].hasTarget()) extend(point(task.bodies[b].target), scene.bodies()[b].radius);
+  }
+  for (const fesd::SceneObstacle& o : scene.obstacles()) extend(point(o.position), o.radius);
   for (const fesd_trajopt::SwitchEvent& event : solution.switches) {
     // The configuration at the switch: the element boundary at that time.
     size_t k = 0;
     while (k + 1 < solution.times.size() && solution.times[k] < event.time - 1e-12) ++k;
-    geometry_msgs::Point label_at;
-    int touching = 0;
     for (size_t b = 0; b < solution.bodies.size(); ++b) {
-      const geometry_msgs::Point& p = solution.bodies[b].positions[k];
-      body_at("switch_configurations", solution.bodies[b], p, yawAt(solution.bodies[b], k),
-              body_color(b, 0.15));
-      if (solution.bodies[b].name == event.first || solution.bodies[b].name == event.second) {
-        label_at.x += p.x;
-        label_at.y += p.y;
-        label_at.z += p.z;
-        ++touching;
-      }
+      body_at("switch_configurations", solution.bodies[b], solution.bodies[b].positions[k],
+              yawAt(solution.bodies[b], k), body_color(b, 0.15));
     }
     visualization_msgs::Marker label =
         marker("switch_labels", visualization_msgs::Marker::TEXT_VIEW_FACING);
-    label.pose.position.x = label_at.x / std::max(touching, 1);
-    label.pose.position.y = label_at.y / std::max(touching, 1);
-    label.pose.position.z = label_at.z / std::max(touching, 1) + 0.5;
-    // Switches near each other would print on top of each other: stack them downwards until the
-    // label overlaps none placed before (it only moves strictly down, so this ends).
-    const double line_height = 0.8 * detail;
-    for (bool moved = true; moved;) {
-      moved = false;
-      for (const geometry_msgs::Point& placed : labels_placed) {
-        double& y = label.pose.position.y;
-        const double below = placed.y - line_height;
-        if (std::abs(placed.x - label.pose.position.x) < 4.0 * detail &&
-            std::abs(placed.y - y) < line_height && below < y) {
-          y = below;
-          moved = true;
-        }
-      }
-    }
-    labels_placed.push_back(label.pose.position);
     char text[160];
-    std::snprintf(text, sizeof(text), "%s %s/%s t=%.3f",
+    std::snprintf(text, sizeof(text), "t=%.3f %s %s/%s", event.time,
                   event.kind == fesd_trajopt::SwitchEvent::CONTACT ? "contact" : "release",
-                  event.first.c_str(), event.second.c_str(), event.time);
+                  event.first.c_str(), event.second.c_str());
     label.text = text;
     label.scale.z = 0.6 * detail;
     label.color = color(0.1, 0.1, 0.1, 1.0);  // for the light background of the shipped view
     markers.markers.push_back(label);
   }
+  stackSwitchLabels(right + 0.8 * detail, top, 0.8 * detail, markers);
   for (const fesd::SceneObstacle& o : scene.obstacles()) {
     disc("obstacles", point(o.position), o.radius, color(0.5, 0.5, 0.5, 1.0));
   }

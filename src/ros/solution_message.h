@@ -71,6 +71,11 @@ std_msgs::ColorRGBA bodyColor(bool actuated, double alpha);
 /// boundaries, stamped with the solution's stamp plus their time, in the solution's frame.
 std::vector<nav_msgs::Path> bodyPaths(const fesd_trajopt::Solution& solution);
 
+/// The switch labels (namespace switch_labels, in time order) in a column: left-aligned at x =
+/// `left`, from y = `top` down, one `line_height` apart (beside the scene, not over it).
+void stackSwitchLabels(double left, double top, double line_height,
+                       visualization_msgs::MarkerArray& markers);
+
 /// rviz markers of a scene solution, one namespace per layer (bodies_start, bodies_final,
 /// targets, paths, switch_configurations, switch_labels, obstacles, walls), preceded by a
 /// DELETEALL; with a robot, its spheres too (addRobotMarkers); with a push plan, its legs (arrows,

@@ -10,6 +10,7 @@
 #include "builtin_systems.h"
 #include "fesd_trajopt/integrator/fesd_integrator.h"
 #include "fesd_trajopt/planning/accuracy_ladder.h"
+#include "fesd_trajopt/planning/closed_loop.h"
 #include "fesd_trajopt/scene/scene_units.h"
 #include "fesd_trajopt/solver/heap_policy.h"
 #include "fesd_trajopt/solver/stopwatch.h"
@@ -222,7 +223,10 @@ TrajoptNode::TrajoptNode(ros::NodeHandle node, ros::NodeHandle private_node)
       plan_server_(
           private_node, config_.solver_threads,
           [this](const fesd_trajopt::PlanRequest& request, const fesd::SolveMonitor& monitor,
-                 fesd_trajopt::PlanTrajectoryResult& answer) { plan(request, &monitor, answer); }) {
+                 fesd_trajopt::PlanTrajectoryResult& answer) {
+            plan(request, &monitor, answer);
+            if (answer.status != kInvalidRequest) showTargets(request);
+          }) {
   marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   solution_publisher_ = private_node_.advertise<fesd_trajopt::Solution>("solution", 1, true);
   // rviz needs its fixed frame in TF: an identity transform to a child frame of this node.
@@ -235,6 +239,13 @@ TrajoptNode::TrajoptNode(ros::NodeHandle node, ros::NodeHandle private_node)
   solve_service_ =
       private_node_.advertiseService("solve_trajectory", &TrajoptNode::solveTrajectory, this);
   simulate_service_ = private_node_.advertiseService("simulate", &TrajoptNode::simulate, this);
+  if (config_.interactive_targets) {
+    targets_ = std::make_unique<InteractiveTargets>(
+        private_node_, config_.frame_id,
+        [this](const fesd_trajopt::PlanRequest& request, InteractiveTargets::Action action,
+               const fesd::SolveMonitor& monitor) { solveTargets(request, action, monitor); });
+    if (!config_.scene_urdf.empty()) showTargets(fesd_trajopt::PlanRequest());
+  }
   plan_server_.start();
   ROS_INFO_STREAM("fesd_trajopt: ready ("
                   << config_.bodies.size() << " configured bodies, "
@@ -246,6 +257,7 @@ bool TrajoptNode::solveTrajectory(fesd_trajopt::SolveTrajectory::Request& reques
                                   fesd_trajopt::SolveTrajectory::Response& response) {
   fesd_trajopt::PlanTrajectoryResult answer;
   plan(request.request, nullptr, answer);
+  if (answer.status != kInvalidRequest) showTargets(request.request);
   response.status = answer.status;
   response.message = answer.message;
   response.solution = answer.solution;
@@ -261,27 +273,29 @@ bool TrajoptNode::simulate(fesd_trajopt::Simulate::Request& request,
 }
 
 void TrajoptNode::plan(const fesd_trajopt::PlanRequest& request, const fesd::SolveMonitor* monitor,
-                       fesd_trajopt::PlanTrajectoryResult& answer) {
+                       fesd_trajopt::PlanTrajectoryResult& answer,
+                       std::shared_ptr<const fesd::SceneOutcome>* solved) {
   const SolveSlots::Slot slot(slots_);
-  answerCatchingErrors("plan", answer, [&] { handlePlan(request, monitor, answer); });
+  answerCatchingErrors("plan", answer, [&] { handlePlan(request, monitor, answer, solved); });
   fesd::releaseFreeMemory();  // the heap keeps what the solve freed until trimmed
 }
 
-void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
-                             const fesd::SolveMonitor* monitor,
-                             fesd_trajopt::PlanTrajectoryResult& answer) {
-  fesd::Stopwatch stopwatch;
+TaskBuild TrajoptNode::planTask(const fesd_trajopt::PlanRequest& request) const {
   TaskBuild build =
       buildTask(config_, sceneFields(request),
                 {request.joints, request.self_collision != 0, request.srdf_param}, private_node_);
-  if (!build.error.empty()) return refuse(answer, build.error);
-  fesd::SceneTask& task = build.task;
-  const bool robot = task.scene.hasRobot();
-  if (request.has_horizon) task.horizon = request.horizon;
-  if (request.has_num_intervals) task.num_intervals = static_cast<int>(request.num_intervals);
-  fesd::SceneSolveOptions options;
+  if (request.has_horizon) build.task.horizon = request.horizon;
+  if (request.has_num_intervals) {
+    build.task.num_intervals = static_cast<int>(request.num_intervals);
+  }
+  return build;
+}
+
+std::string TrajoptNode::planOptions(const fesd_trajopt::PlanRequest& request, bool robot,
+                                     const fesd::SolveMonitor* monitor,
+                                     fesd::SceneSolveOptions& options) const {
   const std::string problem = solveOptions(request, config_, options.ocp);
-  if (!problem.empty()) return refuse(answer, problem);
+  if (!problem.empty()) return problem;
   const bool by_default = request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_DEFAULT;
   options.lazy_pairs = by_default ? config_.lazy_pairs
                                   : request.contact_pairs == fesd_trajopt::PlanRequest::PAIRS_LAZY;
@@ -291,6 +305,21 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
   options.verification.num_stages = config_.verification_stages;
   options.verification.num_elements = config_.verification_elements;
   options.monitor = monitor;
+  return "";
+}
+
+void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
+                             const fesd::SolveMonitor* monitor,
+                             fesd_trajopt::PlanTrajectoryResult& answer,
+                             std::shared_ptr<const fesd::SceneOutcome>* solved) {
+  fesd::Stopwatch stopwatch;
+  TaskBuild build = planTask(request);
+  if (!build.error.empty()) return refuse(answer, build.error);
+  fesd::SceneTask& task = build.task;
+  const bool robot = task.scene.hasRobot();
+  fesd::SceneSolveOptions options;
+  const std::string problem = planOptions(request, robot, monitor, options);
+  if (!problem.empty()) return refuse(answer, problem);
   std::shared_ptr<const fesd::SceneOutcome> previous;
   if (request.warm_start) {
     std::lock_guard<std::mutex> lock(last_solution_mutex_);
@@ -363,10 +392,83 @@ void TrajoptNode::handlePlan(const fesd_trajopt::PlanRequest& request,
   finish(answer, build.notes);
   ROS_INFO_STREAM("fesd_trajopt: " << answer.message << " (" << stopwatch.wallSeconds() << " s)");
   if (fesd::solvedItsNlp(outcome.status)) {  // a solution of its NLP: it can warm-start
+    auto kept = std::make_shared<const fesd::SceneOutcome>(outcome);
+    if (solved != nullptr) *solved = kept;
     std::lock_guard<std::mutex> lock(last_solution_mutex_);
-    last_solution_ = std::make_shared<const fesd::SceneOutcome>(outcome);
+    last_solution_ = kept;
   }
   publish(task, solution, outcome.planned_legs, outcome.planned_transits);
+}
+
+void TrajoptNode::showTargets(const fesd_trajopt::PlanRequest& request) {
+  if (!targets_) return;
+  const TaskBuild build = planTask(request);
+  if (build.error.empty()) targets_->show(request, build.task);
+}
+
+void TrajoptNode::solveTargets(const fesd_trajopt::PlanRequest& request,
+                               InteractiveTargets::Action action,
+                               const fesd::SolveMonitor& monitor) {
+  fesd_trajopt::PlanTrajectoryResult answer;
+  std::shared_ptr<const fesd::SceneOutcome> solved;
+  plan(request, &monitor, answer, &solved);
+  if (action != InteractiveTargets::Action::kExecuteWithFeedback) return;
+  if (!solved) {
+    ROS_WARN_STREAM("fesd_trajopt: ~targets: no plan to execute: " << answer.message);
+    return;
+  }
+  const SolveSlots::Slot slot(slots_);
+  fesd_trajopt::PlanTrajectoryResult execution;
+  answerCatchingErrors("execute with feedback", execution,
+                       [&] { executeWithFeedback(request, *solved, monitor); });
+  fesd::releaseFreeMemory();
+}
+
+void TrajoptNode::executeWithFeedback(const fesd_trajopt::PlanRequest& request,
+                                      const fesd::SceneOutcome& plan,
+                                      const fesd::SolveMonitor& monitor) {
+  fesd::Stopwatch stopwatch;
+  const TaskBuild build = planTask(request);  // it built for the plan
+  const fesd::SceneTask& task = build.task;
+  fesd::ClosedLoopOptions options;
+  options.first_plan = &plan;
+  planOptions(request, task.scene.hasRobot(), &monitor, options.replan);
+  options.replan.verify = false;  // each replan the fastest answer, as closed_loop_demo.py asks
+  options.plant.discretization.num_stages = config_.verification_stages;
+  options.plant.discretization.num_elements = config_.verification_elements;
+  options.plant.homotopy.ipopt.linear_solver = config_.linear_solver;
+  options.plant.retry_homotopy.ipopt.linear_solver = config_.linear_solver;
+  const fesd::ClosedLoopRun run = fesd::executeWithFeedback(task, config_.limits, options);
+  if (run.status != fesd::SolveStatus::kSuccess) {
+    ROS_WARN_STREAM("fesd_trajopt: ~targets: execution with feedback failed: " << run.message);
+    return;
+  }
+  // The executed motion in place of the plan's: the answer's paths, markers and playback.
+  fesd::SceneOutcome executed = plan;
+  executed.trajectory = run.executed;
+  executed.verified = false;
+  executed.refinements.clear();
+  executed.target_yaw_distances.clear();
+  executed.target_distances.assign(task.bodies.size(), std::numeric_limits<double>::quiet_NaN());
+  std::ostringstream message;
+  message << "executed with feedback against the simulated plant: " << run.message;
+  for (size_t b = 0; b < task.bodies.size(); ++b) {
+    if (!task.bodies[b].hasTarget()) continue;
+    executed.target_distances[b] =
+        (task.scene.position(static_cast<int>(b), run.end) - task.bodies[b].target).norm();
+    message << "; '" << task.scene.bodies()[b].name << "' ends " << executed.target_distances[b]
+            << " from its target";
+  }
+  fesd_trajopt::Solution solution = sceneSolution(task, executed, build.planar_joints);
+  solution.status = statusCode(fesd::SolveStatus::kSuccess);
+  solution.message = message.str();
+  solution.header.stamp = ros::Time::now();
+  solution.header.frame_id = config_.frame_id;
+  solution.statistics.wall_time = stopwatch.wallSeconds();
+  solution.statistics.cpu_time = stopwatch.cpuSeconds();
+  ROS_INFO_STREAM("fesd_trajopt: ~targets: " << solution.message << " in " << run.replan_seconds
+                                             << " s of replans");
+  publish(task, solution);
 }
 
 void TrajoptNode::publish(const fesd::SceneTask& task, const fesd_trajopt::Solution& solution,
