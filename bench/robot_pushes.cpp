@@ -30,19 +30,11 @@ struct RobotScene {
   std::function<fesd::SceneTask()> task;
 };
 
-/// The Panda's push with a puck of 4 cm (radius 0.02) resting on the table.
-fesd::SceneTask pandaSmallPuck() {
-  fesd::SceneTask task = fesd::pandaPushTask(shippedRobot("panda_spherized.urdf"));
-  task.scene.bodies()[0].radius = 0.02;
-  task.scene.bodies()[0].position.z() = 0.02;
-  task.bodies[0].target.z() = 0.02;
-  return task;
-}
-
 std::vector<RobotScene> robotScenes() {
   return {
       {"panda_puck", [] { return fesd::pandaPushTask(shippedRobot("panda_spherized.urdf")); }},
-      {"panda_puck_4cm", pandaSmallPuck},
+      {"panda_puck_4cm",
+       [] { return fesd::pandaSmallPuckTask(shippedRobot("panda_spherized.urdf")); }},
       {"panda_bar", [] { return fesd::pandaBarTask(shippedRobot("panda_spherized.urdf")); }},
       {"ur3e_puck", [] { return fesd::ur3ePushTask(shippedRobot("ur3e_spherized.urdf")); }},
       {"planar_iiwa_disc",

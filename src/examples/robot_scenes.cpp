@@ -46,6 +46,14 @@ SceneTask pandaPushTask(std::shared_ptr<const KinematicModel> panda) {
   return task;
 }
 
+SceneTask pandaSmallPuckTask(std::shared_ptr<const KinematicModel> panda) {
+  SceneTask task = pandaPushTask(std::move(panda));
+  task.scene.bodies()[0].radius = 0.02;
+  task.scene.bodies()[0].position.z() = 0.02;
+  task.bodies[0].target.z() = 0.02;
+  return task;
+}
+
 SceneTask ur3ePushTask(std::shared_ptr<const KinematicModel> ur3e) {
   Scene table(3);
   table.bodies().push_back({"puck", 0.03, Eigen::Vector3d(-0.3, 0.1, 0.03), false});

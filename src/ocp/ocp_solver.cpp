@@ -28,10 +28,11 @@ HomotopyOptions guessHomotopy(const OcpOptions& options) {
 
 /// From a plan: one polishing attempt of its active set (when it does not fit, flipping its most
 /// ambiguous pairs rarely did: three failed attempts of 100 iterations each before the homotopy
-/// on the closed loop's replans).
+/// on the closed loop's replans), however far its mapped point is from complementarity.
 HomotopyOptions planHomotopy(const OcpOptions& options) {
   HomotopyOptions homotopy = guessHomotopy(options);
   homotopy.polish_attempts = 1;
+  homotopy.polish_previous_always = true;
   return homotopy;
 }
 

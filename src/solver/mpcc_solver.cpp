@@ -421,7 +421,8 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
   }
   // The previous active set first: one smooth NLP when the problem is (nearly) the same.
   if (options_.polish_active_set && problem.numComplementarities() > 0 &&
-      problem.complementarityResidual(point.x.data()) <= options_.polish_rescue_residual) {
+      (options_.polish_previous_always ||
+       problem.complementarityResidual(point.x.data()) <= options_.polish_rescue_residual)) {
     Stopwatch stopwatch;
     MpccReport report;
     report.solution = point.x;

@@ -18,6 +18,9 @@ SceneTask planarArmPushTask(std::shared_ptr<const KinematicModel> arm);
 /// within 2 s on 5 control intervals, the joints at their URDF speed limits; no joint targets.
 SceneTask pandaPushTask(std::shared_ptr<const KinematicModel> panda);
 
+/// pandaPushTask with a 4 cm puck (radius 0.02, resting on the table), the tabletop issue's.
+SceneTask pandaSmallPuckTask(std::shared_ptr<const KinematicModel> panda);
+
 /// A UR3e on a table (config/robots/ur3e_spherized.urdf, its base on the table z >= 0): from
 /// q0 = (-0.91, -0.98, 1.52, -1.95, -1.92, 0), its tool sphere above the table, it pushes a puck
 /// of radius 0.03 resting on the table from (-0.3, 0.1, 0.03) 0.2 m along -y (weight 100) within
