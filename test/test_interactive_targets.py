@@ -187,6 +187,7 @@ class InteractiveTargetsTest(unittest.TestCase):
         plan, executed = self.wait_for_solutions(since, 2, 120.0)[:2]
         self.assertEqual(plan.status, Solution.SUCCESS, plan.message)
         self.assertIn("executed with feedback", executed.message)
+        self.assertEqual(executed.status, Solution.SUCCESS, executed.message)  # targets judged
         end = self.object_end(executed)
         self.assertLess(math.hypot(end.x - 0.3, end.y - 8.0), 1e-2)
         # Reset: the marker back at the request's target, without a solve.
@@ -198,6 +199,14 @@ class InteractiveTargetsTest(unittest.TestCase):
         self.assertAlmostEqual(self.poses["object"].y, 10.0)
         time.sleep(1.0)
         self.assertEqual(self.solutions_since(since), [])
+        # Executed towards a target out of reach: the execution says it missed.
+        self.feedback.publish(feedback("object", 1.0, 9.5, InteractiveMarkerFeedback.POSE_UPDATE))
+        time.sleep(0.3)
+        since = time.time()
+        self.feedback.publish(feedback("object", 1.0, 9.5, menu, menu_entry=2))
+        plan, executed = self.wait_for_solutions(since, 2, 120.0)[:2]
+        self.assertEqual(plan.status, Solution.TARGET_NOT_REACHED, plan.message)
+        self.assertEqual(executed.status, Solution.TARGET_NOT_REACHED, executed.message)
 
 
 if __name__ == "__main__":

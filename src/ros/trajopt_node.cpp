@@ -452,15 +452,19 @@ void TrajoptNode::executeWithFeedback(const fesd_trajopt::PlanRequest& request,
   executed.target_distances.assign(task.bodies.size(), std::numeric_limits<double>::quiet_NaN());
   std::ostringstream message;
   message << "executed with feedback against the simulated plant: " << run.message;
+  bool missed = false;  // judged as a plan's targets: targetTolerance of the length scale
   for (size_t b = 0; b < task.bodies.size(); ++b) {
     if (!task.bodies[b].hasTarget()) continue;
     executed.target_distances[b] =
         (task.scene.position(static_cast<int>(b), run.end) - task.bodies[b].target).norm();
+    missed = missed || executed.target_distances[b] >
+                           plan.length_scale * fesd::targetTolerance(task.bodies[b].target_weight);
     message << "; '" << task.scene.bodies()[b].name << "' ends " << executed.target_distances[b]
             << " from its target";
   }
   fesd_trajopt::Solution solution = sceneSolution(task, executed, build.planar_joints);
-  solution.status = statusCode(fesd::SolveStatus::kSuccess);
+  solution.status =
+      statusCode(missed ? fesd::SolveStatus::kTargetNotReached : fesd::SolveStatus::kSuccess);
   solution.message = message.str();
   solution.header.stamp = ros::Time::now();
   solution.header.frame_id = config_.frame_id;
