@@ -175,16 +175,21 @@ class InteractiveTargetsTest(unittest.TestCase):
         again = self.solve(PlanRequest())
         self.assertEqual(again.status, Solution.SUCCESS, again.message)
 
+    def execute_towards(self, x, y):
+        """Drags `object` to (x, y), chooses Execute with feedback: the plan and the execution."""
+        self.feedback.publish(feedback("object", x, y, InteractiveMarkerFeedback.POSE_UPDATE))
+        time.sleep(0.3)
+        since = time.time()
+        self.feedback.publish(
+            feedback("object", x, y, InteractiveMarkerFeedback.MENU_SELECT, menu_entry=2))
+        return self.wait_for_solutions(since, 2, 120.0)[:2]
+
     def test_5_the_menu_executes_with_feedback_and_resets(self):
         answer = self.solve(PlanRequest())
         self.assertEqual(answer.status, Solution.SUCCESS, answer.message)
         time.sleep(1.0)  # the solves' spacing after the flood
         menu = InteractiveMarkerFeedback.MENU_SELECT
-        self.feedback.publish(feedback("object", 0.3, 8.0, InteractiveMarkerFeedback.POSE_UPDATE))
-        time.sleep(0.3)
-        since = time.time()
-        self.feedback.publish(feedback("object", 0.3, 8.0, menu, menu_entry=2))
-        plan, executed = self.wait_for_solutions(since, 2, 120.0)[:2]
+        plan, executed = self.execute_towards(0.3, 8.0)
         self.assertEqual(plan.status, Solution.SUCCESS, plan.message)
         self.assertIn("executed with feedback", executed.message)
         self.assertEqual(executed.status, Solution.SUCCESS, executed.message)  # targets judged
@@ -200,11 +205,7 @@ class InteractiveTargetsTest(unittest.TestCase):
         time.sleep(1.0)
         self.assertEqual(self.solutions_since(since), [])
         # Executed towards a target out of reach: the execution says it missed.
-        self.feedback.publish(feedback("object", 1.0, 9.5, InteractiveMarkerFeedback.POSE_UPDATE))
-        time.sleep(0.3)
-        since = time.time()
-        self.feedback.publish(feedback("object", 1.0, 9.5, menu, menu_entry=2))
-        plan, executed = self.wait_for_solutions(since, 2, 120.0)[:2]
+        plan, executed = self.execute_towards(1.0, 9.5)
         self.assertEqual(plan.status, Solution.TARGET_NOT_REACHED, plan.message)
         self.assertEqual(executed.status, Solution.TARGET_NOT_REACHED, executed.message)
 
