@@ -120,6 +120,8 @@ void applyHomotopyArguments(const Arguments& args, fesd::HomotopyOptions& option
   options.ipopt.linear_solver = args.text("linear-solver", options.ipopt.linear_solver);
   options.ipopt.near_solution_violation =
       args.number("near-solution-violation", options.ipopt.near_solution_violation);
+  options.ipopt.added_rows_mu_max =
+      args.number("added-rows-mu-max", options.ipopt.added_rows_mu_max);
   const std::string method = args.text("mpcc-method", fesd::methodName(options.method));
   if (!fesd::parseMethod(method, options.method)) {
     throw std::invalid_argument("--mpcc-method=homotopy|active_set");

@@ -74,7 +74,9 @@ const std::map<std::string, Command>& commands() {
         "    homotopy: --sigma0 --kappa --max-steps --relaxed-tolerance-factor --barrier-factor\n"
         "    --ipopt-tol --mu-strategy --cold-mu-strategy --ipopt-print-level "
         "--ipopt=name:value,...\n"
-        "    --near-solution-violation=1e-3 (< 0: a plan's point starts Ipopt cold)"}},
+        "    --near-solution-violation=1e-3 (< 0: a plan's point starts Ipopt cold)\n"
+        "    --added-rows-mu-max=0.1 (a lazy round's cold start: the barrier's bound; 0: "
+        "Ipopt's)"}},
       {"ocp-accuracy",
        {fesd_bench::ocpAccuracy,
         "Showcase: terminal accuracy (fine FESD re-simulation of the optimal controls) vs CPU\n"
@@ -103,7 +105,8 @@ const std::map<std::string, Command>& commands() {
         "    the node's default request: status, seconds and ratio to the default scene's,\n"
         "    iterations, target and yaw errors, height change on the support, smallest gap, CSV.\n"
         "    --scenes=panda_puck,... --node-horizon (5 s, 40 intervals for all) --budget=120\n"
-        "    --accuracy=1e-2 --all-pairs-up-to=32\n"
+        "    --accuracy=1e-2 --all-pairs-up-to=32 --repeat=3 (seconds: the median of the runs\n"
+        "    after the first, as the default scene's)\n"
         "    --length-scaling=true and the homotopy/Ipopt options of ocp-manipulation"}},
       {"mpcc-methods",
        {fesd_bench::mpccMethods,

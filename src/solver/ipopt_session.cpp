@@ -284,38 +284,55 @@ IpoptSession::IpoptSession(const IpoptSettings& settings)
                            {"slack_bound_frac", "0.01"},
                            {"bound_mult_init_method", "constant"}}) {
   if (settings.linear_solver == kLdltSolver) registerLdltAsMa97();
-  application_ = IpoptApplicationFactory();
-  Ipopt::OptionsList& options = *application_->Options();
+  for (const auto& [name, value] : settings.extra_options) {
+    if (cold_start_options_.count(name)) cold_start_options_[name] = value;
+  }
+  application_ = newApplication(0.0);
+}
+
+Ipopt::SmartPtr<Ipopt::IpoptApplication> IpoptSession::newApplication(double mu_max) {
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> application = IpoptApplicationFactory();
+  Ipopt::OptionsList& options = *application->Options();
   options.SetStringValue("sb", "yes");
-  options.SetIntegerValue("print_level", settings.print_level);
-  options.SetNumericValue("acceptable_tol", settings.acceptable_tolerance);
-  options.SetIntegerValue("max_iter", settings.max_iterations);
+  options.SetIntegerValue("print_level", settings_.print_level);
+  options.SetNumericValue("acceptable_tol", settings_.acceptable_tolerance);
+  options.SetIntegerValue("max_iter", settings_.max_iterations);
   options.SetStringValue("hessian_approximation", "exact");
   // Complementarity products must be resolved far below Ipopt's default bound relaxation (1e-8).
   options.SetNumericValue("bound_relax_factor", 0.0);
-  if (settings.linear_solver == kLdltSolver) {
+  if (settings_.linear_solver == kLdltSolver) {
     // Ours answers under MA97's name; MA97's own scaling is not ours to offer.
     options.SetStringValue("linear_solver", "ma97");
     options.SetStringValue("ma97_scaling", "none");
   } else {
-    options.SetStringValue("linear_solver", settings.linear_solver);
+    options.SetStringValue("linear_solver", settings_.linear_solver);
   }
   if (uses_mumps_) setMumpsOptions(options);
+  if (mu_max > 0.0) options.SetNumericValue("mu_max", mu_max);
 
-  for (const auto& [name, value] : settings.extra_options) {
-    if (cold_start_options_.count(name)) cold_start_options_[name] = value;
+  for (const auto& [name, value] : settings_.extra_options) {
     if (!setOption(options, name, value)) {
       throw std::invalid_argument("Ipopt option '" + name + "' does not accept '" + value + "'");
     }
   }
-  if (application_->Initialize() != Ipopt::Solve_Succeeded) {
+  if (application->Initialize() != Ipopt::Solve_Succeeded) {
     throw std::runtime_error("Ipopt could not be initialised (invalid option?)");
   }
+  return application;
 }
 
 NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point,
                                const SolveSettings& solve_settings) {
-  Ipopt::OptionsList& options = *application_->Options();
+  const bool near = !point.has_multipliers && point.near_solution &&
+                    constraintViolation(problem, point.x) <= settings_.near_solution_violation;
+  const bool bounded_barrier =
+      !point.has_multipliers && !near && point.rows_added && settings_.added_rows_mu_max > 0.0;
+  if (bounded_barrier && Ipopt::IsNull(bounded_barrier_application_)) {
+    bounded_barrier_application_ = newApplication(settings_.added_rows_mu_max);
+  }
+  Ipopt::IpoptApplication& application =
+      bounded_barrier ? *bounded_barrier_application_ : *application_;
+  Ipopt::OptionsList& options = *application.Options();
   options.SetNumericValue("tol", solve_settings.tolerance);
   options.SetNumericValue("obj_scaling_factor", solve_settings.objective_scaling);
   options.SetNumericValue("mu_target", solve_settings.barrier_target);
@@ -334,8 +351,7 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
                                         ? solve_settings.warm_start_bound_push
                                         : settings_.warm_start_bound_push);
     }
-  } else if (point.near_solution &&
-             constraintViolation(problem, point.x) <= settings_.near_solution_violation) {
+  } else if (near) {
     options.SetStringValue("mu_strategy", settings_.mu_strategy);
     options.SetStringValue("warm_start_init_point", "no");
     options.SetNumericValue("mu_init", settings_.near_solution_mu);
@@ -358,7 +374,7 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
     resetScotchRandom();
   }
   try {
-    outcome.status = application_->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(GetRawPtr(adapter)));
+    outcome.status = application.OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(GetRawPtr(adapter)));
   } catch (const std::exception&) {
     outcome.status = Ipopt::NonIpopt_Exception_Thrown;
   } catch (...) {
@@ -367,9 +383,9 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
   outcome.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   outcome.evaluation_seconds = adapter->evaluationSeconds();
-  if (Ipopt::IsValid(application_->Statistics())) {
-    outcome.iterations = application_->Statistics()->IterationCount();
-    outcome.objective = application_->Statistics()->FinalObjective();
+  if (Ipopt::IsValid(application.Statistics())) {
+    outcome.iterations = application.Statistics()->IterationCount();
+    outcome.objective = application.Statistics()->FinalObjective();
   }
   return outcome;
 }
@@ -377,7 +393,8 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
 IpoptSession::~IpoptSession() {
   if (!uses_mumps_) return;
   std::lock_guard<std::mutex> mumps_turn(mumpsLock());
-  application_ = nullptr;  // ends the application's MUMPS instance, if it made one
+  application_ = nullptr;  // ends the applications' MUMPS instances, if they made them
+  bounded_barrier_application_ = nullptr;
 }
 
 bool IpoptSession::converged(Ipopt::ApplicationReturnStatus status) {

@@ -17,6 +17,9 @@ struct PrimalDualPoint {
   /// Without multipliers: x solves a nearby NLP (the same plan with more rows, or re-gridded);
   /// Ipopt starts next to it (IpoptSettings::near_solution_*) when it is that near this one.
   bool near_solution = false;
+  /// x solves this NLP without some of its rows (a lazy round's plan through its new pairs): a
+  /// cold start from it bounds the barrier parameter (IpoptSettings::added_rows_mu_max).
+  bool rows_added = false;
 };
 
 /// What one Ipopt solve produced.
@@ -62,7 +65,11 @@ class IpoptSession {
   /// Ipopt's starting options of a cold start (its defaults, or the user's extra_options),
   /// restored after a start next to a solution changed them.
   std::map<std::string, std::string> cold_start_options_;
+  /// An application configured from settings_, its barrier parameter bounded by mu_max (0:
+  /// Ipopt's own bound, from the starting point: once set, Ipopt's option cannot be unset).
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> newApplication(double mu_max);
   Ipopt::SmartPtr<Ipopt::IpoptApplication> application_;
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> bounded_barrier_application_;  ///< made when first used
 };
 
 /// Seconds on the steady clock, the time base of deadlines.

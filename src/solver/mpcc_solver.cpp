@@ -401,6 +401,7 @@ MpccReport MpccSolver::solveNearSolution(RelaxedMpcc& problem, const std::vector
   PrimalDualPoint point;
   point.x = solution;
   point.near_solution = true;
+  point.rows_added = true;
   return run(problem, point, sigma_initial, wall_time_budget);
 }
 

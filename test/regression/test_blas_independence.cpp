@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "fesd_trajopt/examples/manipulation_example.h"
+#include "fesd_trajopt/examples/planning_scenes.h"
 #include "fesd_trajopt/examples/push_t.h"
 #include "fesd_trajopt/planning/accuracy_ladder.h"
 #include "fesd_trajopt/planning/closed_loop.h"
@@ -147,6 +148,14 @@ std::uint64_t probeDigest() {
   digest.add(push_t.trajectory);
   digest.add(push_t.report.iterations);
   digest.add(push_t.verification.error);
+  // A lazy round started cold from a plan through its new pairs (the session's second Ipopt
+  // application, its barrier bounded).
+  const fesd::SceneOutcome posts = fesd::solveSceneTask(
+      fesd::planning_scenes::postsScene(2).task, fesd::TaskLimits{}, fesd_test::nodeGridOptions());
+  EXPECT_EQ(posts.status, fesd::SolveStatus::kSuccess) << posts.message;
+  EXPECT_EQ(posts.pair_rounds, 2) << posts.message;
+  digest.add(posts.trajectory);
+  digest.add(posts.report.iterations);
   return digest.value();
 }
 

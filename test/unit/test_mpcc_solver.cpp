@@ -225,7 +225,9 @@ TEST(MpccSolver, AStartNextToASolutionWithoutMultipliersStaysNextToIt) {
 TEST(MpccSolver, AStartFarFromFeasibleIsStartedCold) {
   // Cut by 0.5: far more than near_solution_violation, so Ipopt starts as from any guess.
   CutCorner corner(0.5);
-  fesd::MpccSolver solver;
+  fesd::HomotopyOptions unbounded;
+  unbounded.ipopt.added_rows_mu_max = 0.0;
+  fesd::MpccSolver solver(unbounded);
   ASSERT_LT(solver.options().ipopt.near_solution_violation, 0.5);
   const fesd::MpccReport near =
       solver.solveNearSolution(corner.cut.nlp, corner.solution.solution, 1e-4, -1.0);
@@ -234,6 +236,18 @@ TEST(MpccSolver, AStartFarFromFeasibleIsStartedCold) {
   EXPECT_EQ(near.iterations, cold.iterations);
   EXPECT_EQ(near.solution, cold.solution);
   EXPECT_NEAR(near.solution[corner.cut.x], 0.5, 1e-8);
+  // With the barrier bounded (the default; its own Ipopt application) the same solution, and a
+  // cold start after it in the same solver is again Ipopt's own: its bound does not carry over.
+  fesd::MpccSolver bounded_solver;
+  ASSERT_GT(bounded_solver.options().ipopt.added_rows_mu_max, 0.0);
+  const fesd::MpccReport bounded =
+      bounded_solver.solveNearSolution(corner.cut.nlp, corner.solution.solution, 1e-4, -1.0);
+  ASSERT_EQ(bounded.status, fesd::SolveStatus::kSuccess) << bounded.message;
+  EXPECT_NEAR(bounded.solution[corner.cut.x], 0.5, 1e-8);
+  const fesd::MpccReport cold_after =
+      bounded_solver.solve(corner.cut.nlp, corner.solution.solution, 1e-4);
+  EXPECT_EQ(cold_after.iterations, cold.iterations);
+  EXPECT_EQ(cold_after.solution, cold.solution);
 }
 
 TEST(MpccSolver, ReportsInfeasibility) {

@@ -54,6 +54,12 @@ struct IpoptSettings {
   /// farther off (a plan through the pairs a lazy round adds, a plan mapped to more stages) is
   /// started cold: at mu_init 1e-9 Ipopt crept back to feasibility.
   double near_solution_violation = 1e-3;
+  /// The largest barrier parameter of a cold start from a plan solved without some of the NLP's
+  /// rows (a lazy round's: the plan passes through the pairs it adds); 0: Ipopt's own bound. Its
+  /// adaptive barrier otherwise rose to mu = 3e3 there, the objective from 9e-3 to 3.5e3, and took
+  /// 212 iterations to come back (posts seed 7); capped at 0.1, the posts family's seeds 0-7 took
+  /// 789 iterations instead of 959 (docs/results.md).
+  double added_rows_mu_max = 0.1;
   /// Any further Ipopt option by name; the value's type (integer, number, text) is inferred.
   std::map<std::string, std::string> extra_options;
 };
@@ -303,7 +309,8 @@ class MpccSolver {
   MpccReport solve(RelaxedMpcc& problem, const std::vector<double>& initial_guess,
                    double sigma_initial = -1.0, double wall_time_budget = -1.0);
   /// As solve(initial_guess), from a solution of a nearby problem without its multipliers (a plan
-  /// with pairs added): Ipopt starts next to it (IpoptSettings::near_solution_*).
+  /// with pairs added): Ipopt starts next to it (IpoptSettings::near_solution_*), or cold with
+  /// its barrier parameter bounded when the point is farther (IpoptSettings::added_rows_mu_max).
   MpccReport solveNearSolution(RelaxedMpcc& problem, const std::vector<double>& solution,
                                double sigma_initial, double wall_time_budget);
   /// A warm start from a previous solution of the same problem, multipliers included: its
