@@ -111,6 +111,7 @@ void applyHomotopyArguments(const Arguments& args, fesd::HomotopyOptions& option
   options.relaxed_tolerance_factor =
       args.number("relaxed-tolerance-factor", options.relaxed_tolerance_factor);
   options.max_steps = args.integer("max-steps", options.max_steps);
+  options.polish_iterations = args.integer("polish-iterations", options.polish_iterations);
   options.barrier_factor = args.number("barrier-factor", options.barrier_factor);
   options.ipopt.tolerance = args.number("ipopt-tol", options.ipopt.tolerance);
   options.ipopt.mu_strategy = args.text("mu-strategy", options.ipopt.mu_strategy);

@@ -48,6 +48,7 @@ int nodeDefaultSweep(const Arguments& args, const std::vector<std::string>& fami
   namespace ps = fesd::planning_scenes;
   fesd::SceneSolveOptions options = nodeDefaultOptions(args.number("budget", 120.0));
   options.first_round_margin = args.number("first-margin", options.first_round_margin);
+  options.ocp.guess_sigma = args.number("guess-sigma", options.ocp.guess_sigma);
   applyHomotopyArguments(args, options.ocp.homotopy);
   applyLengthScaling(args, options);
   const double accuracy = args.number("accuracy", 1e-2);

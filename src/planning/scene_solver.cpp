@@ -26,6 +26,11 @@ namespace {
 /// into, which a nearly complementary start is slow to mend.
 constexpr double kTightestResumedRelaxation = 1e-4;
 
+/// A replan's polish of its previous plan's active set stops after this many Ipopt iterations:
+/// from the plant's state, off the plan, 8 of cluttered seed 22's 13 replans ran that polish to
+/// its former cap of 100 and failed, and none converged between 50 and 100 (docs/results.md).
+constexpr int kReplanPolishIterations = 50;
+
 /// Validation, infeasibility and the pair decisions: what both entry points do before solving.
 /// False when the task is not to be solved.
 bool prepare(const SceneTask& task, const TaskLimits& limits, bool check_goals,
@@ -495,6 +500,9 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
   for (int round = 1;; ++round) {
     const MovingPart part = movingPartOf(aimed, outcome);
     OcpOptions ocp_options = options.ocp;
+    if (options.previous != nullptr) {
+      ocp_options.homotopy.previous_polish_iterations = kReplanPolishIterations;
+    }
     ocp_options.discretization.gap_guards = gapGuards(
         current, part, outcome.held_grazes, outcome.guard_points, ocp_options.discretization);
     const OcpDefinition ocp = buildOcp(part.task, part.modelled);

@@ -433,7 +433,9 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
     settings.warm_start_mu = options_.ipopt.previous_solution_mu;
     settings.warm_start_bound_push = options_.ipopt.previous_solution_bound_push;
     settings.tolerance = options_.ipopt.tolerance;
-    settings.max_iterations = options_.polish_iterations;
+    settings.max_iterations = options_.previous_polish_iterations > 0
+                                  ? options_.previous_polish_iterations
+                                  : options_.polish_iterations;
     // The objective the previous solution was polished with: its vanishing terms' weight.
     problem.setVanishingTermsWeight(options_.vanishing_terms_weight);
     problem.setRelaxation(previous.polish_sigma);

@@ -222,6 +222,27 @@ TEST(MpccSolver, AStartNextToASolutionWithoutMultipliersStaysNextToIt) {
       << polished.iterations << " against " << polished_cold.iterations;
 }
 
+TEST(MpccSolver, APreviousActiveSetsPolishStopsAtItsOwnIterationCap) {
+  CutCorner corner(1e-4);
+  ASSERT_EQ(corner.solution.status, fesd::SolveStatus::kSuccess) << corner.solution.message;
+  fesd::MpccReport plan;
+  plan.solution = corner.solution.solution;
+  plan.polish_sigma = corner.solution.polish_sigma;
+  const fesd::MpccReport uncapped = fesd::MpccSolver().solve(corner.cut.nlp, plan, 1e-4);
+  ASSERT_EQ(uncapped.status, fesd::SolveStatus::kSuccess) << uncapped.message;
+  ASSERT_TRUE(uncapped.polished);
+  ASSERT_GT(uncapped.history.front().iterations, 1);
+  // Capped at one iteration the polish stops unconverged, and the homotopy solves the MPCC.
+  fesd::HomotopyOptions capped;
+  capped.previous_polish_iterations = 1;
+  const fesd::MpccReport report = fesd::MpccSolver(capped).solve(corner.cut.nlp, plan, 1e-4);
+  ASSERT_EQ(report.status, fesd::SolveStatus::kSuccess) << report.message;
+  EXPECT_EQ(report.history.front().sigma, 0.0);
+  EXPECT_EQ(report.history.front().iterations, 1);
+  EXPECT_FALSE(report.history.front().converged);
+  EXPECT_NEAR(report.solution[corner.cut.x], 1.0 - 1e-4, 1e-6);
+}
+
 TEST(MpccSolver, AStartFarFromFeasibleIsStartedCold) {
   // Cut by 0.5: far more than near_solution_violation, so Ipopt starts as from any guess.
   CutCorner corner(0.5);

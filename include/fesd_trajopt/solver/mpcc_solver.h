@@ -168,6 +168,10 @@ struct HomotopyOptions {
   /// whose new stage points, interpolated, leave products up to 2.6 that fixing its active set
   /// removes (the Panda's 4 cm puck's last rung: 534 -> 42 Ipopt iterations).
   bool polish_previous_always = false;
+  /// Ipopt iterations for that polish of a previous solution's or a plan's active set (0:
+  /// polish_iterations). A replan from the plant's state starts off its plan, and a polish
+  /// that had not converged by 50 iterations did not by 100 (planning/scene_solver.cpp).
+  int previous_polish_iterations = 0;
   /// A warm start whose point meets the KKT conditions of the previous active set's branch NLP
   /// to this (primal, bound complementarity; dual relative to max(1, |grad f|_inf)) is accepted
   /// without an Ipopt iteration: an unchanged request answers with its previous solution.
