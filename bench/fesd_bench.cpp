@@ -72,6 +72,7 @@ const std::map<std::string, Command>& commands() {
         "    --divergence (per interval: OCP vs fine re-simulation, fine vs twice finer)\n"
         "    --history (per relaxed NLP) --trajectory (per interval; switches)\n"
         "    homotopy: --sigma0 --kappa --max-steps --relaxed-tolerance-factor --barrier-factor\n"
+        "    --polish-iterations=100\n"
         "    --ipopt-tol --mu-strategy --cold-mu-strategy --ipopt-print-level "
         "--ipopt=name:value,...\n"
         "    --near-solution-violation=1e-3 (< 0: a plan's point starts Ipopt cold)\n"
