@@ -20,9 +20,12 @@ std::string resultMessage(const MpccReport& report, const Trajectory& trajectory
   return report.message + "; " + describeUnresolvedSwitches(trajectory.unresolved_switches);
 }
 
+/// From a guess: a first relaxation too tight for it starts over looser (cluttered seeds 106 and
+/// 110 ran theirs at sigma 1e-2 to Ipopt's limit and timed out; from 1e-1 both succeed).
 HomotopyOptions guessHomotopy(const OcpOptions& options) {
   HomotopyOptions homotopy = options.homotopy;
   homotopy.early_polish_sigma = options.guess_early_polish_sigma;
+  homotopy.loosen_failed_first_relaxation = true;
   return homotopy;
 }
 

@@ -479,6 +479,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
   int consecutive_infeasible = 0;
   // Active sets identified by the last converged relaxation and by the last early polishing.
   std::vector<bool> settled_candidate, polished_set;
+  bool loosened = false;
   for (int step = 0; step < steps; ++step) {
     problem.setRelaxation(sigma);
     // Following the barrier, the previous NLP ended centred at barrier_factor times its sigma.
@@ -547,6 +548,15 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     }
     report.status = converged ? SolveStatus::kComplementarityNotMet : failureStatus(outcome.status);
     if (interrupted(report.status)) break;
+    if (step == 0 && !loosened && !smooth && options_.loosen_failed_first_relaxation &&
+        outcome.status == Ipopt::Maximum_Iterations_Exceeded && !start.has_multipliers &&
+        !start.near_solution) {
+      loosened = true;
+      point = start;
+      sigma /= options_.sigma_reduction;
+      --step;
+      continue;
+    }
     consecutive_infeasible =
         report.status == SolveStatus::kInfeasible ? consecutive_infeasible + 1 : 0;
     if (!converged && (!options_.continue_after_failure ||

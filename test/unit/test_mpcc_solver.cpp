@@ -222,6 +222,27 @@ TEST(MpccSolver, AStartNextToASolutionWithoutMultipliersStaysNextToIt) {
       << polished.iterations << " against " << polished_cold.iterations;
 }
 
+TEST(MpccSolver, AFirstRelaxationAtItsIterationLimitStartsOverOnceLooser) {
+  CornerMpcc problem, same_problem;
+  fesd::HomotopyOptions options;
+  options.sigma_initial = 1e-2;
+  options.ipopt.max_iterations = 1;  // every relaxed NLP stops at the limit
+  options.max_steps = 3;
+  const fesd::MpccReport plain = problem.solve(options);
+  ASSERT_GE(plain.history.size(), 2u);
+  EXPECT_EQ(plain.history[0].ipopt_status, "maximum_iterations_exceeded");
+  EXPECT_DOUBLE_EQ(plain.history[1].sigma, 1e-3);
+  options.loosen_failed_first_relaxation = true;
+  const fesd::MpccReport loosened = same_problem.solve(options);
+  ASSERT_GE(loosened.history.size(), 3u);
+  // The first NLP again, from the same start at sigma / kappa; then the homotopy goes on (only
+  // once: the loosened one failed too).
+  EXPECT_DOUBLE_EQ(loosened.history[0].sigma, 1e-2);
+  EXPECT_DOUBLE_EQ(loosened.history[1].sigma, 1e-1);
+  EXPECT_DOUBLE_EQ(loosened.history[2].sigma, 1e-2);
+  EXPECT_EQ(loosened.history[1].iterations, plain.history[0].iterations);
+}
+
 TEST(MpccSolver, APreviousActiveSetsPolishStopsAtItsOwnIterationCap) {
   CutCorner corner(1e-4);
   ASSERT_EQ(corner.solution.status, fesd::SolveStatus::kSuccess) << corner.solution.message;

@@ -111,6 +111,10 @@ struct HomotopyOptions {
   /// showcase re-simulation step), never after an infeasible one; on an infeasible simulation
   /// step every relaxation failed (14 in a row, 3-8 times the time of stopping, same status).
   int max_consecutive_infeasible = 3;
+  /// A first relaxed NLP started cold that runs to Ipopt's iteration limit is too tight for its
+  /// start: the homotopy starts again from that start, once, at sigma / kappa (an OCP's solve
+  /// from its first guess: OcpSolver; a simulation step splits instead).
+  bool loosen_failed_first_relaxation = false;
   double wall_time_budget = std::numeric_limits<double>::infinity();  ///< seconds, per solve
   /// After the homotopy converges, fix the identified active set and solve the resulting smooth
   /// NLP once more (RelaxedMpcc::fixActiveSet): complementarity then holds exactly instead of
