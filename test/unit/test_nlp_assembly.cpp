@@ -178,3 +178,56 @@ TEST(NlpAssembly, EqualityResidualMeasuresOnlyTheEqualityRows) {
   EXPECT_DOUBLE_EQ(nlp.equalityResidual(off), 1.5);    // x - y = 5.5 violates only the range
   EXPECT_DOUBLE_EQ(nlp.equalityResidual(below), 0.5);  // 2.5 against 3
 }
+
+namespace {
+
+/// The row h * F(z) with F(z) = z0^2 + z1^2 (an element length times a stage function).
+fesd::NlpAssembly scaledRow() {
+  fesd::NlpAssembly nlp;
+  const int z = nlp.addVariables(2, -kInf, kInf);
+  const int h = nlp.addVariables(1, 0.0, kInf);
+  const int row = nlp.addRows(1, 0.0, 0.0);
+  nlp.addFunctionTerm(
+      fesd::QuadraticFunction::weightedDistance(Eigen::Vector2d::Ones(), Eigen::Vector2d::Zero()),
+      {z, z + 1}, h, {{row, 1.0}});
+  nlp.finalize();
+  return nlp;
+}
+
+Eigen::MatrixXd dense(const fesd::SparsityPattern& pattern, const std::vector<double>& values,
+                      int rows, int cols) {
+  Eigen::MatrixXd matrix = Eigen::MatrixXd::Zero(rows, cols);
+  for (int e = 0; e < pattern.nonzeros(); ++e)
+    matrix(pattern.rows[e], pattern.cols[e]) += values[e];
+  return matrix;
+}
+
+}  // namespace
+
+/// A scaled term's values and Jacobian are kept for the next evaluation at the same point only:
+/// after an evaluation elsewhere, the Jacobian and the Hessian are those of their own point.
+TEST(NlpAssembly, KeptEvaluationsServeOnlyTheirOwnPoint) {
+  fesd::NlpAssembly nlp = scaledRow();
+  const std::vector<double> x1{1.0, 2.0, 0.5}, x2{3.0, -1.0, 2.0}, y{1.5};
+  std::vector<double> g(1), jacobian(nlp.jacobianPattern().nonzeros()),
+      hessian(nlp.hessianPattern().nonzeros());
+  // At x2: d/dz = 2 h z = (12, -4), d/dh = |z|^2 = 10; y Hess: 2 y h I on z, 2 y z on (h, z).
+  Eigen::MatrixXd expected_jacobian(1, 3);
+  expected_jacobian << 12.0, -4.0, 10.0;
+  Eigen::MatrixXd expected_hessian = Eigen::MatrixXd::Zero(3, 3);
+  expected_hessian(0, 0) = expected_hessian(1, 1) = 2.0 * 1.5 * 2.0;
+  expected_hessian(2, 0) = expected_hessian(0, 2) = 2.0 * 1.5 * 3.0;
+  expected_hessian(2, 1) = expected_hessian(1, 2) = 2.0 * 1.5 * -1.0;
+  for (bool same_point : {false, true}) {
+    nlp.constraints(same_point ? x2.data() : x1.data(), g.data());
+    nlp.jacobian(x2.data(), jacobian.data());
+    EXPECT_TRUE(dense(nlp.jacobianPattern(), jacobian, 1, 3).isApprox(expected_jacobian))
+        << dense(nlp.jacobianPattern(), jacobian, 1, 3);
+    if (!same_point) nlp.jacobian(x1.data(), jacobian.data());
+    nlp.hessian(x2.data(), 0.0, y.data(), hessian.data());
+    Eigen::MatrixXd triangle = dense(nlp.hessianPattern(), hessian, 3, 3);
+    Eigen::MatrixXd symmetric = triangle + triangle.transpose();
+    symmetric.diagonal() = triangle.diagonal();
+    EXPECT_TRUE(symmetric.isApprox(expected_hessian)) << symmetric;
+  }
+}
