@@ -299,12 +299,25 @@ std::pair<std::string, std::string> Scene::pairSides(const ContactPair& pair) co
   return {body, ""};
 }
 
+double Scene::collisionRadius(int index) const {
+  if (index >= 0) {
+    for (const SceneBody& body : bodies_) {
+      const int count = std::max<int>(1, body.spheres.size());
+      if (index < count) return body.spheres.empty() ? body.radius : body.spheres[index].radius;
+      index -= count;
+    }
+    if (robot_ && index < static_cast<int>(robot_->spheres.size())) {
+      return robot_->spheres[index].radius;
+    }
+  }
+  throw std::out_of_range("Scene::collisionRadius: no collision body of that index");
+}
+
 double Scene::pairSize(const ContactPair& pair) const {
-  const std::vector<CollisionBody> bodies = collisionBodies();
-  const double radius = bodies.at(pair.body).radius;
+  const double radius = collisionRadius(pair.body);
   switch (pair.kind) {
     case ContactPair::Kind::kBody:
-      return radius + bodies.at(pair.other).radius;
+      return radius + collisionRadius(pair.other);
     case ContactPair::Kind::kObstacle:
       return radius + obstacles_.at(pair.other).radius;
     case ContactPair::Kind::kWall:

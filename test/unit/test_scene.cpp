@@ -8,6 +8,7 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -186,6 +187,12 @@ TEST(Scene, AFreeBodyWithSeveralSpheresPairsSphereBySphere) {
                            "bar/sphere_0/floor", "disc/hand/sphere_1"}) {
     EXPECT_TRUE(contains(names, name)) << name;
   }
+  const std::vector<fesd::CollisionBody> bodies = scene.collisionBodies();
+  for (int c = 0; c < static_cast<int>(bodies.size()); ++c) {
+    EXPECT_EQ(scene.collisionRadius(c), bodies[c].radius) << bodies[c].name;
+  }
+  EXPECT_THROW(scene.collisionRadius(static_cast<int>(bodies.size())), std::out_of_range);
+  EXPECT_THROW(scene.collisionRadius(-1), std::out_of_range);
   const Eigen::VectorXd x0 = scene.initialState();
   for (const ContactPair& pair : scene.allPairs()) {
     const std::string name = scene.pairName(pair);

@@ -201,6 +201,9 @@ class Scene {
   std::pair<std::string, std::string> pairSides(const ContactPair& pair) const;
   /// The length a pair's margins are relative to: the sum of its radii (a wall: the body's).
   double pairSize(const ContactPair& pair) const;
+  /// The radius of collision body `index` (collisionBodies()[index].radius without building
+  /// them all: pair checks ask for every pair in reach at every point they check).
+  double collisionRadius(int index) const;
   /// The constraint value of one pair at a state (> 0: apart).
   double constraintValue(const ContactPair& pair, const Eigen::VectorXd& x) const;
   /// The signed gap between the pair's surfaces at x (negative: overlap).
