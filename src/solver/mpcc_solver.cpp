@@ -159,15 +159,24 @@ void recordBranchNlp(MpccReport& report, const NlpOutcome& outcome, double resid
   ++report.branch_nlps;
 }
 
-/// While the active set of a polished point is fixed: true if the branch with the pairs it left
-/// biactive flipped (HomotopyOptions::branch_check_iterations) offers no lower objective than
-/// `objective` from `polished`. Leaves that branch fixed.
-bool otherBranchKeepsPoint(IpoptSession& session, const HomotopyOptions& options,
-                           RelaxedMpcc& problem, const PrimalDualPoint& polished, double objective,
-                           const IpoptSession::SolveSettings& settings, const SolveMonitor* monitor,
-                           MpccReport& report) {
+/// What the branch with a polished point's biactive pairs flipped says of the point.
+enum class BranchCheck {
+  kKeepsPoint,  ///< it offers no lower objective: B-stationary on both branches
+  kLower,       ///< it offers a lower objective (or there is no such branch to solve)
+  kNotSolved,   ///< its NLP did not solve within branch_check_iterations: nothing shown
+};
+
+/// While the active set of a polished point is fixed: solves the branch with the pairs it left
+/// biactive flipped (HomotopyOptions::branch_check_iterations) from `polished` and compares its
+/// objective with `objective`. Leaves that branch fixed.
+BranchCheck checkOtherBranch(IpoptSession& session, const HomotopyOptions& options,
+                             RelaxedMpcc& problem, const PrimalDualPoint& polished,
+                             double objective, const IpoptSession::SolveSettings& settings,
+                             const SolveMonitor* monitor, MpccReport& report) {
   const std::vector<bool> other = problem.flipBiactivePairs(polished.x.data());
-  if (other.empty() || !problem.fixGivenActiveSet(other, polished.x.data())) return false;
+  if (other.empty() || !problem.fixGivenActiveSet(other, polished.x.data())) {
+    return BranchCheck::kLower;
+  }
   PrimalDualPoint point = polished;
   IpoptSession::SolveSettings check = settings;
   check.max_iterations = options.branch_check_iterations;
@@ -175,7 +184,10 @@ bool otherBranchKeepsPoint(IpoptSession& session, const HomotopyOptions& options
   const bool solved = IpoptSession::converged(outcome.status);
   recordBranchNlp(report, outcome, problem.complementarityResidual(point.x.data()), solved,
                   monitor);
-  return solved && outcome.objective >= objective - 1e-8 * std::max(1.0, std::fabs(objective));
+  if (!solved) return BranchCheck::kNotSolved;
+  return outcome.objective >= objective - 1e-8 * std::max(1.0, std::fabs(objective))
+             ? BranchCheck::kKeepsPoint
+             : BranchCheck::kLower;
 }
 
 /// What phase II found at a branch NLP's solution: its last LPEC.
@@ -337,6 +349,9 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
       residual = problem.complementarityResidual(point.x.data());
     }
     bool stationary = certification.certified;
+    // Kept although B-stationarity was not shown: a branch check that did not solve, where the
+    // options accept that.
+    bool unrefuted = false;
     if (!active_set || !certification.known) {
       const double descent =
           solved && point.has_multipliers
@@ -344,13 +359,15 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
               : std::numeric_limits<double>::infinity();
       stationary = descent <= options.stationarity_tolerance;
       if (solved && !stationary && require_stationarity && options.branch_check_iterations > 0) {
-        stationary = otherBranchKeepsPoint(session, options, problem, point, objective, settings,
-                                           monitor, report);
+        const BranchCheck check = checkOtherBranch(session, options, problem, point, objective,
+                                                   settings, monitor, report);
+        stationary = check == BranchCheck::kKeepsPoint;
+        unrefuted = check == BranchCheck::kNotSolved && options.accept_unsolved_branch_check;
       }
     }
     problem.releaseActiveSet();
     if (solved && residual <= report.complementarity_residual &&
-        (stationary || !require_stationarity)) {
+        (stationary || unrefuted || !require_stationarity)) {
       report.solution = point.x;
       report.multipliers = {point.bound_lower_multipliers, point.bound_upper_multipliers,
                             point.constraint_multipliers};

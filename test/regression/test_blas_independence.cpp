@@ -132,6 +132,10 @@ std::uint64_t probeDigest() {
   const fesd::MpccReport loosened = capped_corner.solve(capped);
   for (double value : loosened.solution) digest.add(value);
   for (const fesd::HomotopyStep& step : loosened.history) digest.add(step.objective);
+  // A replan's early polish kept although its branch check did not solve (1 iteration).
+  const fesd::MpccReport kept = fesd_test::OnlyTheOrigin().solveWithAnUnsolvedBranchCheck(true);
+  for (double value : kept.solution) digest.add(value);
+  digest.add(kept.iterations);
   // The showcase at desk size (a 2 cm pusher): solved in units of its length scale, answered in
   // metres.
   const fesd::SceneOutcome desk = fesd::solveSceneTask(

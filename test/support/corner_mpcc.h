@@ -45,6 +45,27 @@ struct OnlyTheOrigin {
                         {x}, -1, {{fesd::NlpAssembly::kObjective, 1.0}});
     nlp.addComplementarity({{x, 1.0}}, {{y, 1.0}});
   }
+  /// Adds a second pair, u = 1 _|_ v = 0 (min (u - 1)^2 + v^2), the scale on which y counts as
+  /// zero, and finalizes; a start is (0.5, 0.5, 1, 0.1).
+  void addScalePairAndFinalize() {
+    const int u = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+    const int v = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
+    nlp.addFunctionTerm(fesd::QuadraticFunction::weightedDistance(Eigen::Vector2d::Ones(),
+                                                                  Eigen::Vector2d(1.0, 0.0)),
+                        {u, v}, -1, {{fesd::NlpAssembly::kObjective, 1.0}});
+    nlp.addComplementarity({{u, 1.0}}, {{v, 1.0}});
+    nlp.finalize();
+  }
+  /// Solved from (0.5, 0.5, 1, 0.1) with the scale pair, polished early (sigma 1e-2), and a branch
+  /// check of one iteration, which cannot solve the other branch.
+  fesd::MpccReport solveWithAnUnsolvedBranchCheck(bool accept_unsolved) {
+    addScalePairAndFinalize();
+    fesd::HomotopyOptions options;
+    options.early_polish_sigma = 1e-2;
+    options.branch_check_iterations = 1;
+    options.accept_unsolved_branch_check = accept_unsolved;
+    return fesd::MpccSolver(options).solve(nlp, {0.5, 0.5, 1.0, 0.1});
+  }
 };
 
 }  // namespace fesd_test

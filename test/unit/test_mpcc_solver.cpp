@@ -85,20 +85,13 @@ TEST(MpccSolver, AnEarlyPolishThatSucceedsIsNotPolishedAgain) {
 TEST(MpccSolver, TheOtherBranchConfirmsAPointTheMultipliersCannot) {
   for (const int check : {30, 0}) {
     fesd_test::OnlyTheOrigin problem;
-    fesd::NlpAssembly& nlp = problem.nlp;
     const int x = problem.x, y = problem.y;
-    // A second pair, u = 1 _|_ v = 0, gives the scale on which y counts as zero.
-    const int u = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
-    const int v = nlp.addVariables(1, 0.0, fesd::NlpAssembly::kInfinity);
-    nlp.addFunctionTerm(fesd::QuadraticFunction::weightedDistance(Eigen::Vector2d::Ones(),
-                                                                  Eigen::Vector2d(1.0, 0.0)),
-                        {u, v}, -1, {{fesd::NlpAssembly::kObjective, 1.0}});
-    nlp.addComplementarity({{u, 1.0}}, {{v, 1.0}});
-    nlp.finalize();
+    problem.addScalePairAndFinalize();
     fesd::HomotopyOptions options;
     options.early_polish_sigma = 1e-2;
     options.branch_check_iterations = check;
-    const fesd::MpccReport report = fesd::MpccSolver(options).solve(nlp, {0.5, 0.5, 1.0, 0.1});
+    const fesd::MpccReport report =
+        fesd::MpccSolver(options).solve(problem.nlp, {0.5, 0.5, 1.0, 0.1});
     ASSERT_EQ(report.status, fesd::SolveStatus::kSuccess) << report.message;
     EXPECT_NEAR(report.solution[x], 0.0, 1e-8);
     EXPECT_NEAR(report.solution[y], 0.0, 1e-8);
@@ -108,6 +101,26 @@ TEST(MpccSolver, TheOtherBranchConfirmsAPointTheMultipliersCannot) {
       EXPECT_EQ(report.history.size(), 6u);
     } else {
       EXPECT_GT(report.history.size(), 6u);  // the homotopy goes on
+    }
+  }
+}
+
+/// The same point with a branch check of one iteration, which cannot solve the other branch:
+/// nothing is shown either way. By default the homotopy goes on; accepting an unsolved check
+/// keeps the polished point, not claimed B-stationary.
+TEST(MpccSolver, AnUnsolvedBranchCheckKeepsThePointOnlyWhereAccepted) {
+  for (const bool accept : {false, true}) {
+    fesd_test::OnlyTheOrigin problem;
+    const fesd::MpccReport report = problem.solveWithAnUnsolvedBranchCheck(accept);
+    ASSERT_EQ(report.status, fesd::SolveStatus::kSuccess) << report.message;
+    EXPECT_NEAR(report.solution[problem.x], 0.0, 1e-8);
+    ASSERT_GE(report.history.size(), 6u);
+    EXPECT_FALSE(report.history[5].converged);  // the one-iteration check
+    if (accept) {
+      EXPECT_EQ(report.history.size(), 6u) << report.message;
+      EXPECT_FALSE(report.b_stationary);
+    } else {
+      EXPECT_GT(report.history.size(), 6u);
     }
   }
 }

@@ -157,6 +157,11 @@ struct HomotopyOptions {
   /// although every branch keeps the point (the showcase with a disc at (0.5, 6): the flipped
   /// branch returned the same objective in 10 iterations, 213 -> 61 in all).
   int branch_check_iterations = 30;
+  /// An early or warm-start polished point whose branch check did not solve within its
+  /// iterations is kept (b_stationary false: nothing shown either way) instead of the homotopy
+  /// going on. On cluttered seed 22's replans the homotopy then went on to sigma 1e-10 (130-190
+  /// iterations there) from points that Cbc's LPEC certified B-stationary every time.
+  bool accept_unsolved_branch_check = false;
   /// Ipopt iterations for polishing an active set before the homotopy goes on (early polishing,
   /// a previous solution's or a plan's): near its solution a branch NLP converges in tens of
   /// iterations (warm replans 11-15, a plan refined onto a finer grid 15-40); one whose active
