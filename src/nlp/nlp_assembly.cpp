@@ -139,20 +139,6 @@ void NlpAssembly::finalize() {
         std::max({scratch, static_cast<size_t>(f.inputSize()), static_cast<size_t>(f.outputSize()),
                   static_cast<size_t>(jac.nonzeros()), static_cast<size_t>(hess.nonzeros())});
   }
-  size_t memo_values = 0, memo_jacobians = 0;
-  for (FunctionTerm& term : terms_) {
-    if (term.scale_variable < 0 || term.jacobian_slots.empty()) continue;
-    term.memo_values = static_cast<int>(memo_values);
-    term.memo_jacobian = static_cast<int>(memo_jacobians);
-    memo_values += term.function->outputSize();
-    memo_jacobians += term.function->jacobianPattern().nonzeros();
-  }
-  for (TermMemo* memo : {&value_memo_, &jacobian_memo_}) {
-    memo->point.assign(x_lower_.size(), 0.0);
-    memo->valid = false;
-  }
-  value_memo_.values.resize(memo_values);
-  jacobian_memo_.values.resize(memo_jacobians);
   scratch_values_.resize(scratch);
   scratch_jacobian_.resize(scratch);
   scratch_hessian_.resize(scratch);
@@ -229,7 +215,6 @@ void NlpAssembly::constraints(const double* x, double* g) const {
   for (const Complementarity& comp : complementarities_) {
     g[comp.row] += linearValue(comp.left, x) * linearValue(comp.right, x);
   }
-  value_memo_.valid = false;
   for (const FunctionTerm& term : terms_) {
     const int outputs = term.function->outputSize();
     bool evaluated = false;
@@ -239,17 +224,12 @@ void NlpAssembly::constraints(const double* x, double* g) const {
       if (!evaluated) {
         term.function->evaluate(gather(term.inputs, x, scratch_inputs_), scratch_values_.data());
         evaluated = true;
-        if (term.memo_values >= 0) {
-          std::copy(scratch_values_.begin(), scratch_values_.begin() + outputs,
-                    value_memo_.values.begin() + term.memo_values);
-        }
       }
       for (int r = 0; r < outputs; ++r) {
         g[target.row + r] += coefficient(target) * scale * scratch_values_[r];
       }
     }
   }
-  value_memo_.keep(x);
 }
 
 void NlpAssembly::jacobian(const double* x, double* values) const {
@@ -265,26 +245,15 @@ void NlpAssembly::jacobian(const double* x, double* values) const {
       values[comp.right_slots[i]] += comp.right[i].coefficient * left;
     }
   }
-  const bool values_kept = value_memo_.holds(x);
-  jacobian_memo_.valid = false;
   for (const FunctionTerm& term : terms_) {
     if (term.jacobian_slots.empty() && term.scale_jacobian_slots.empty()) continue;
     const SmoothFunction& f = *term.function;
     const double* z = gather(term.inputs, x, scratch_inputs_);
     const int nnz = f.jacobianPattern().nonzeros(), outputs = f.outputSize();
     f.evaluateJacobian(z, scratch_jacobian_.data());
-    if (term.memo_jacobian >= 0) {
-      std::copy(scratch_jacobian_.begin(), scratch_jacobian_.begin() + nnz,
-                jacobian_memo_.values.begin() + term.memo_jacobian);
-    }
     const bool scaled = term.scale_variable >= 0;
     const double scale = scaled ? x[term.scale_variable] : 1.0;
-    const double* term_values = scratch_values_.data();
-    if (scaled && values_kept && term.memo_values >= 0) {
-      term_values = value_memo_.values.data() + term.memo_values;
-    } else if (scaled) {
-      f.evaluate(z, scratch_values_.data());
-    }
+    if (scaled) f.evaluate(z, scratch_values_.data());
     int target_index = 0;
     for (const Target& target : term.targets) {
       if (target.row == kObjective) continue;
@@ -295,13 +264,12 @@ void NlpAssembly::jacobian(const double* x, double* values) const {
       if (scaled) {
         const int* scale_slots = term.scale_jacobian_slots.data() + target_index * outputs;
         for (int r = 0; r < outputs; ++r) {
-          values[scale_slots[r]] += coefficient(target) * term_values[r];
+          values[scale_slots[r]] += coefficient(target) * scratch_values_[r];
         }
       }
       ++target_index;
     }
   }
-  jacobian_memo_.keep(x);
 }
 
 void NlpAssembly::termWeights(const FunctionTerm& term, double objective_factor,
@@ -323,7 +291,6 @@ void NlpAssembly::hessian(const double* x, double objective_factor, const double
                           double* values) const {
   checkFinalized();
   std::fill(values, values + hessian_slots_.pattern().nonzeros(), 0.0);
-  const bool jacobians_kept = jacobian_memo_.holds(x);
   for (const Complementarity& comp : complementarities_) {
     const double multiplier = multipliers[comp.row];
     int k = 0;
@@ -351,14 +318,10 @@ void NlpAssembly::hessian(const double* x, double objective_factor, const double
     if (scaled) {
       // d^2/(dh dz) of h * w^T F(z) is J(z)^T w.
       const SparsityPattern& jac = f.jacobianPattern();
-      const double* jacobian = scratch_jacobian_.data();
-      if (jacobians_kept && term.memo_jacobian >= 0) {
-        jacobian = jacobian_memo_.values.data() + term.memo_jacobian;
-      } else {
-        f.evaluateJacobian(z, scratch_jacobian_.data());
-      }
+      f.evaluateJacobian(z, scratch_jacobian_.data());
       for (int e = 0; e < jac.nonzeros(); ++e) {
-        values[term.scale_hessian_slots[jac.cols[e]]] += weights[jac.rows[e]] * jacobian[e];
+        values[term.scale_hessian_slots[jac.cols[e]]] +=
+            weights[jac.rows[e]] * scratch_jacobian_[e];
       }
     }
   }

@@ -204,9 +204,9 @@ Eigen::MatrixXd dense(const fesd::SparsityPattern& pattern, const std::vector<do
 
 }  // namespace
 
-/// A scaled term's values and Jacobian are kept for the next evaluation at the same point only:
-/// after an evaluation elsewhere, the Jacobian and the Hessian are those of their own point.
-TEST(NlpAssembly, KeptEvaluationsServeOnlyTheirOwnPoint) {
+/// A term scaled by a variable (h F(z)): its Jacobian and Hessian against the analytic ones,
+/// whatever point the evaluation before was at (the function objects keep state between calls).
+TEST(NlpAssembly, AScaledTermsDerivativesAreThoseOfTheirOwnPoint) {
   fesd::NlpAssembly nlp = scaledRow();
   const std::vector<double> x1{1.0, 2.0, 0.5}, x2{3.0, -1.0, 2.0}, y{1.5};
   std::vector<double> g(1), jacobian(nlp.jacobianPattern().nonzeros()),

@@ -1,8 +1,6 @@
 #pragma once
 
-#include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <functional>
 #include <memory>
 #include <unordered_map>
@@ -152,25 +150,7 @@ class NlpAssembly : public RelaxedMpcc {
     std::vector<int> scale_jacobian_slots;  // per target, per output
     std::vector<int> hessian_slots;         // per Hessian entry
     std::vector<int> scale_hessian_slots;   // per input (-1 when F does not depend on it)
-    /// A scaled term with rows: where its values and Jacobian sit in the memos (else -1).
-    int memo_values = -1, memo_jacobian = -1;
   };
-  /// What the scaled terms' evaluations left at the last point: jacobian() needs the values
-  /// constraints() computed there and hessian() the Jacobians jacobian() computed, and an
-  /// Ipopt iteration evaluates all three at one x (the Panda's contact Jacobians were evaluated
-  /// again in its Hessians: 3 % of its solve). The functions' own values: no bit changes.
-  struct TermMemo {
-    std::vector<double> point, values;
-    bool valid = false;
-    bool holds(const double* x) const {
-      return valid && std::memcmp(point.data(), x, point.size() * sizeof(double)) == 0;
-    }
-    void keep(const double* x) {
-      std::copy(x, x + point.size(), point.begin());
-      valid = true;
-    }
-  };
-
   /// The active set fixActiveSet would fix at x: per pair whether the left side is the zero
   /// one, and how ambiguous the choice is (min/max of the two sides; 0 when data decides).
   struct ActiveSetChoice {
@@ -225,7 +205,6 @@ class NlpAssembly : public RelaxedMpcc {
   // Scratch buffers sized to the largest function term (evaluation is single-threaded per NLP).
   mutable std::vector<double> scratch_values_, scratch_jacobian_, scratch_hessian_,
       scratch_weights_, scratch_inputs_;
-  mutable TermMemo value_memo_, jacobian_memo_;
 };
 
 }  // namespace fesd
