@@ -21,29 +21,16 @@ std::vector<double> smallestGaps(const Scene& scene, const std::vector<ContactPa
   CentreEvaluator evaluator(scene.robotPointer(), dimension);
   // Each body's centre once per point, not once per pair: a robot's checked pairs share few
   // bodies (231 pairs of 63 spheres for the Panda's bar), and a turning one's costs a sincos.
-  std::vector<int> slot_of(bodies.size(), -1);
-  std::vector<int> used;
-  const auto need = [&](int body) {
-    if (slot_of.at(body) < 0) {
-      slot_of[body] = static_cast<int>(used.size());
-      used.push_back(body);
-    }
-  };
-  for (const ContactPair& pair : pairs) {
-    need(pair.body);
-    if (pair.kind == ContactPair::Kind::kBody) need(pair.other);
-  }
-  std::vector<Eigen::Vector3d> centres(used.size());
+  std::vector<Eigen::Vector3d> centres(bodies.size());
   // Per pair, its relative position at each point (for a wall: the body's centre).
   std::vector<Eigen::MatrixXd> relative(pairs.size(), Eigen::MatrixXd(dimension, path.size()));
   for (size_t i = 0; i < path.size(); ++i) {
     evaluator.setState(path[i].data());
-    for (size_t u = 0; u < used.size(); ++u)
-      centres[u] = evaluator.position(bodies[used[u]].centre);
+    for (size_t c = 0; c < bodies.size(); ++c) centres[c] = evaluator.position(bodies[c].centre);
     for (size_t k = 0; k < pairs.size(); ++k) {
       const ContactPair& pair = pairs[k];
-      Eigen::Vector3d p = centres[slot_of[pair.body]];
-      if (pair.kind == ContactPair::Kind::kBody) p -= centres[slot_of[pair.other]];
+      Eigen::Vector3d p = centres.at(pair.body);
+      if (pair.kind == ContactPair::Kind::kBody) p -= centres.at(pair.other);
       relative[k].col(i) = p.head(dimension);
       if (pair.kind == ContactPair::Kind::kObstacle) {
         relative[k].col(i) -= scene.obstacles().at(pair.other).position;
