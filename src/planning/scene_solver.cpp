@@ -504,6 +504,7 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
       ocp_options.homotopy.previous_polish_iterations = kReplanPolishIterations;
       // A replan is one of many: the next one starts from where this plan leads.
       ocp_options.homotopy.accept_unsolved_branch_check = true;
+      ocp_options.homotopy.resume_from_unsolved_polish = true;
     }
     ocp_options.discretization.gap_guards = gapGuards(
         current, part, outcome.held_grazes, outcome.guard_points, ocp_options.discretization);

@@ -310,7 +310,8 @@ bool solvesAlready(const NlpProblem& problem, const PrimalDualPoint& point, doub
 void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& problem,
             const PrimalDualPoint& converged, double sigma,
             const IpoptSession::SolveSettings& settings, int attempts, bool require_stationarity,
-            const SolveMonitor* monitor, MpccReport& report, bool accept_solved_start = false) {
+            const SolveMonitor* monitor, MpccReport& report, bool accept_solved_start = false,
+            PrimalDualPoint* unsolved_iterate = nullptr) {
   problem.setBiactiveRule(options.polish_biactive_fraction, sigma);
   // After a failed attempt: its biactive pairs flipped, tried before the next attempt.
   std::vector<bool> biactive_flipped;
@@ -334,6 +335,11 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
             ? NlpOutcome{Ipopt::Solve_Succeeded, 0, problem.objective(point.x.data()), 0.0, 0.0}
             : session.solve(problem, point, settings);
     const bool solved = IpoptSession::converged(outcome.status);
+    // Handed on only if it (nearly) solves its branch's rows: a stalled polish, not a failed one.
+    if (!solved && attempt == 0 && unsolved_iterate != nullptr &&
+        constraintViolation(problem, point.x) <= options.ipopt.near_solution_violation) {
+      *unsolved_iterate = point;
+    }
     double objective = outcome.objective;
     if (!solved && !flipped_biactive) biactive_flipped = problem.flipBiactivePairs(point.x.data());
     double residual = problem.complementarityResidual(point.x.data());
@@ -456,8 +462,10 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
     // The objective the previous solution was polished with: its vanishing terms' weight.
     problem.setVanishingTermsWeight(options_.vanishing_terms_weight);
     problem.setRelaxation(previous.polish_sigma);
+    PrimalDualPoint unsolved;
     polish(*session_, options_, problem, point, options_.complementarity_tolerance, settings,
-           options_.polish_attempts, true, monitor_, report, true);
+           options_.polish_attempts, true, monitor_, report, true,
+           options_.resume_from_unsolved_polish ? &unsolved : nullptr);
     if (polishedToTolerance(report, options_)) {
       report.status = SolveStatus::kSuccess;
       report.message = "success: polished from the previous solution's active set, " +
@@ -468,6 +476,11 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
     }
     report.wall_seconds = stopwatch.wallSeconds();
     report.cpu_seconds = stopwatch.cpuSeconds();
+    if (!unsolved.x.empty()) {
+      point = PrimalDualPoint{};
+      point.x = unsolved.x;
+      point.near_solution = true;
+    }
     MpccReport homotopy =
         run(problem, point, sigma_initial,
             wall_time_budget >= 0.0 ? std::max(0.0, wall_time_budget - report.wall_seconds) : -1.0);

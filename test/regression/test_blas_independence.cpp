@@ -136,6 +136,11 @@ std::uint64_t probeDigest() {
   const fesd::MpccReport kept = fesd_test::OnlyTheOrigin().solveWithAnUnsolvedBranchCheck(true);
   for (double value : kept.solution) digest.add(value);
   digest.add(kept.iterations);
+  // A homotopy resumed from a polish of the plan's active set that stopped unsolved.
+  fesd_test::CornerMpcc<> cut_corner;
+  const fesd::MpccReport resumed = fesd_test::solveCutCornerAfterAnUnsolvedPolish(cut_corner, true);
+  for (double value : resumed.solution) digest.add(value);
+  digest.add(resumed.iterations);
   // The showcase at desk size (a 2 cm pusher): solved in units of its length scale, answered in
   // metres.
   const fesd::SceneOutcome desk = fesd::solveSceneTask(

@@ -29,6 +29,24 @@ struct CornerMpcc {
   }
 };
 
+/// Cuts `corner` (not finalized) at x <= 1 - 1e-4 and solves it from the plan (1, 0.3), whose
+/// active set (y = 0) is polished for one Ipopt iteration only, so that the polish stops unsolved
+/// and the homotopy follows from sigma 1e-4: from the plan, or from the polish's iterate where
+/// `resume`.
+template <class Assembly>
+fesd::MpccReport solveCutCornerAfterAnUnsolvedPolish(CornerMpcc<Assembly>& corner, bool resume) {
+  corner.nlp.addLinear(corner.nlp.addRows(1, -fesd::NlpAssembly::kInfinity, 1.0 - 1e-4),
+                       {{corner.x, 1.0}});
+  corner.nlp.finalize();
+  fesd::MpccReport plan;
+  plan.solution = {1.0, 0.3};
+  fesd::HomotopyOptions options;
+  options.polish_previous_always = true;
+  options.previous_polish_iterations = 1;
+  options.resume_from_unsolved_polish = resume;
+  return fesd::MpccSolver(options).solve(corner.nlp, plan, 1e-4);
+}
+
 /// min -x  s.t.  y = x,  0 <= x _|_ y >= 0 (not finalized): the origin is the only feasible point,
 /// so it is B-stationary, but on the branch x = 0 the row y = x holds the free side y at 0 too
 /// and no multiplier has the multiplier test's signs (d Lagrangian / dx = -1 - z_y < 0).

@@ -1,6 +1,10 @@
 // The homotopy solver on tiny problems with known answers, and its status reporting.
 #include <gtest/gtest.h>
 
+#include <limits>
+#include <utility>
+#include <vector>
+
 #include "fesd_trajopt/function/affine_function.h"
 #include "support/corner_mpcc.h"
 
@@ -275,6 +279,53 @@ TEST(MpccSolver, APreviousActiveSetsPolishStopsAtItsOwnIterationCap) {
   EXPECT_EQ(report.history.front().iterations, 1);
   EXPECT_FALSE(report.history.front().converged);
   EXPECT_NEAR(report.solution[corner.cut.x], 1.0 - 1e-4, 1e-6);
+}
+
+/// Records the first point evaluated after each change of the relaxation: where each NLP of a
+/// solve starts (Ipopt's starting point, after its push off the bounds).
+struct StartRecordingAssembly : fesd::NlpAssembly {
+  mutable std::vector<std::pair<double, std::vector<double>>> starts;  ///< (sigma, point)
+  mutable bool armed = false;
+  void setRelaxation(double sigma) override {
+    NlpAssembly::setRelaxation(sigma);
+    armed = true;
+  }
+  double objective(const double* x) const override {
+    if (armed) starts.push_back({relaxation(), std::vector<double>(x, x + numVariables())});
+    armed = false;
+    return NlpAssembly::objective(x);
+  }
+};
+
+/// y where the first relaxed NLP after the unsolved polish of solveCutCornerAfterAnUnsolvedPolish
+/// starts, and the solve's report.
+std::pair<double, fesd::MpccReport> resumedAfterAnUnsolvedPolish(bool resume) {
+  fesd_test::CornerMpcc<StartRecordingAssembly> corner;
+  const fesd::MpccReport report = fesd_test::solveCutCornerAfterAnUnsolvedPolish(corner, resume);
+  double start_y = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& [sigma, point] : corner.nlp.starts) {
+    if (sigma == 1e-4) {
+      start_y = point[corner.y];
+      break;
+    }
+  }
+  return {start_y, report};
+}
+
+TEST(MpccSolver, AnUnsolvedPolishOfAPlanHandsItsIterateToTheHomotopyWhereAsked) {
+  const auto [plan_start_y, from_plan] = resumedAfterAnUnsolvedPolish(false);
+  const auto [polish_start_y, from_polish] = resumedAfterAnUnsolvedPolish(true);
+  for (const fesd::MpccReport* report : {&from_plan, &from_polish}) {
+    ASSERT_EQ(report->status, fesd::SolveStatus::kSuccess) << report->message;
+    ASSERT_FALSE(report->history.empty());
+    EXPECT_EQ(report->history.front().iterations, 1);  // the polish, capped
+    EXPECT_FALSE(report->history.front().converged);
+    EXPECT_NEAR(report->solution[0], 1.0 - 1e-4, 1e-6);
+    EXPECT_NEAR(report->solution[1], 0.0, 1e-6);
+  }
+  // From the plan, its y = 0.3; from the polish's iterate, y held at 0 (pushed off its bound).
+  EXPECT_NEAR(plan_start_y, 0.3, 1e-9);
+  EXPECT_LT(polish_start_y, 1e-3);
 }
 
 TEST(MpccSolver, AStartFarFromFeasibleIsStartedCold) {

@@ -181,6 +181,14 @@ struct HomotopyOptions {
   /// polish_iterations). A replan from the plant's state starts off its plan, and a polish
   /// that had not converged by 50 iterations did not by 100 (planning/scene_solver.cpp).
   int previous_polish_iterations = 0;
+  /// When that polish does not solve, the homotopy resumes from its last iterate instead of from
+  /// the previous solution, if the iterate meets its branch NLP's rows and bounds to
+  /// ipopt.near_solution_violation. A replan's polish moves the plan onto the plant's state with
+  /// its old contacts before it stalls (cluttered seed 22: feasible to 1e-9 and its objective
+  /// settled after ~10 of its 50 iterations), and from there the relaxation at 1e-4 took 18-29
+  /// Ipopt iterations instead of 45-64. Graze rounds of a first plan did not gain (seed 7: 1840
+  /// -> 2182 iterations), so it is for replans.
+  bool resume_from_unsolved_polish = false;
   /// A warm start whose point meets the KKT conditions of the previous active set's branch NLP
   /// to this (primal, bound complementarity; dual relative to max(1, |grad f|_inf)) is accepted
   /// without an Ipopt iteration: an unchanged request answers with its previous solution.
