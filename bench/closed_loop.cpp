@@ -90,6 +90,9 @@ int closedLoop(const Arguments& args) {
             replan.after_intervals, fesd::statusName(replan.status).c_str(),
             replan.warm_started ? "warm" : "cold", replan.pair_rounds, replan.iterations,
             replan.seconds, steps.c_str());
+        if (replan.status != fesd::SolveStatus::kSuccess) {
+          std::printf("#     %s\n", replan.message.c_str());
+        }
       }
       if (run.status != fesd::SolveStatus::kSuccess) {
         std::fprintf(stderr, "# %s %u: %s\n", family.c_str(), scene.seed, run.message.c_str());

@@ -97,11 +97,17 @@ ClosedLoopRun executeWithFeedback(const SceneTask& task, const TaskLimits& limit
     Replan record;
     record.after_intervals = done;
     record.seconds = replan_time.wallSeconds();
-    record.status = next->solved() ? next->status : SolveStatus::kSolverError;
+    // Refused before a solve: an invalid request, or goals no motion can meet in the time left.
+    record.status = !next->invalid.empty()      ? SolveStatus::kSolverError
+                    : !next->infeasible.empty() ? SolveStatus::kInfeasible
+                                                : next->status;
     record.iterations = next->report.iterations;
     record.warm_started = next->warm_started;
     record.pair_rounds = next->pair_rounds;
     record.history = next->report.history;
+    record.message = !next->invalid.empty()      ? next->invalid
+                     : !next->infeasible.empty() ? "infeasible: " + next->infeasible
+                                                 : next->message;
     run.replans.push_back(record);
     run.replan_seconds += record.seconds;
     // A replan that did not solve its NLP leaves the plan before in charge.

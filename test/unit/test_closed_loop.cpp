@@ -42,4 +42,29 @@ TEST(ClosedLoop, AnInvalidTaskEndsBeforeItStarts) {
   EXPECT_TRUE(run.replans.empty());
 }
 
+TEST(ClosedLoop, AReplanRefusedAsInfeasibleSaysSoAndThePlanBeforeRunsOn) {
+  // A first plan that pushes nothing: after 18 of 20 intervals the pusher cannot bring the puck
+  // 3 further in the 0.2 s left.
+  const fesd::SceneTask task = fesd_test::pushAlongX();
+  fesd::SceneOutcome idle;
+  idle.status = fesd::SolveStatus::kSuccess;
+  idle.trajectory.controls.assign(task.num_intervals,
+                                  Eigen::VectorXd::Zero(task.scene.controlSize()));
+  fesd::ClosedLoopOptions options;
+  options.first_plan = &idle;
+  options.replan_every = 18;
+  const fesd::ClosedLoopRun run = fesd::executeWithFeedback(task, fesd::TaskLimits{}, options);
+  ASSERT_EQ(run.status, fesd::SolveStatus::kSuccess) << run.message;
+  ASSERT_EQ(run.replans.size(), 1u);
+  EXPECT_EQ(run.replans[0].status, fesd::SolveStatus::kInfeasible);
+  EXPECT_NE(run.replans[0].message.find("infeasible: body"), std::string::npos)
+      << run.replans[0].message;
+  EXPECT_NE(run.replans[0].message.find("cannot reach its target within the horizon"),
+            std::string::npos);
+  // The idle plan ran to the end: the puck where it started.
+  EXPECT_LT(
+      (task.scene.position(1, run.end) - task.scene.position(1, task.scene.initialState())).norm(),
+      1e-9);
+}
+
 }  // namespace

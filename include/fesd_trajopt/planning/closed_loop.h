@@ -35,6 +35,7 @@ struct Replan {
   bool warm_started = false;
   int pair_rounds = 0;
   std::vector<HomotopyStep> history;  ///< its relaxed and polishing NLPs, all rounds
+  std::string message;                ///< the answer's, or why the request was refused
 };
 
 struct ClosedLoopRun {
