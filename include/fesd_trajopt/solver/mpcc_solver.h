@@ -185,7 +185,7 @@ struct HomotopyOptions {
   /// the previous solution, if the iterate meets its branch NLP's rows and bounds to
   /// ipopt.near_solution_violation. A replan's polish moves the plan onto the plant's state with
   /// its old contacts before it stalls (cluttered seed 22: feasible to 1e-9 and its objective
-  /// settled after ~10 of its 50 iterations), and from there the relaxation at 1e-4 took 18-29
+  /// settled after ~10 of its 50 iterations), and from there the relaxation at 1e-4 took 23-50
   /// Ipopt iterations instead of 45-64. Graze rounds of a first plan did not gain (seed 7: 1840
   /// -> 2182 iterations), so it is for replans.
   bool resume_from_unsolved_polish = false;
