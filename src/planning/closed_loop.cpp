@@ -24,6 +24,18 @@ void widenWorkspacesToStarts(SceneTask& task) {
   }
 }
 
+/// An outcome's status, and what it says: one refused before its solve is SOLVER_ERROR (an
+/// invalid request) or INFEASIBLE (goals no motion can meet in the time it has).
+SolveStatus statusOf(const SceneOutcome& outcome) {
+  if (!outcome.invalid.empty()) return SolveStatus::kSolverError;
+  return outcome.infeasible.empty() ? outcome.status : SolveStatus::kInfeasible;
+}
+
+std::string messageOf(const SceneOutcome& outcome) {
+  if (!outcome.invalid.empty()) return outcome.invalid;
+  return outcome.infeasible.empty() ? outcome.message : "infeasible: " + outcome.infeasible;
+}
+
 }  // namespace
 
 ClosedLoopRun executeWithFeedback(const SceneTask& task, const TaskLimits& limits,
@@ -40,11 +52,8 @@ ClosedLoopRun executeWithFeedback(const SceneTask& task, const TaskLimits& limit
   run.first_seconds = first_time.wallSeconds();
   // A plan less accurate than asked is still the best there is to execute.
   if (!run.first.solved() || !solvedItsNlp(run.first.status)) {
-    run.status = run.first.solved() ? run.first.status : SolveStatus::kSolverError;
-    run.message = "the first plan: " +
-                  (run.first.invalid.empty()
-                       ? run.first.infeasible.empty() ? run.first.message : run.first.infeasible
-                       : run.first.invalid);
+    run.status = statusOf(run.first);
+    run.message = "the first plan: " + messageOf(run.first);
     return run;
   }
   const double interval = task.horizon / task.num_intervals;
@@ -97,17 +106,12 @@ ClosedLoopRun executeWithFeedback(const SceneTask& task, const TaskLimits& limit
     Replan record;
     record.after_intervals = done;
     record.seconds = replan_time.wallSeconds();
-    // Refused before a solve: an invalid request, or goals no motion can meet in the time left.
-    record.status = !next->invalid.empty()      ? SolveStatus::kSolverError
-                    : !next->infeasible.empty() ? SolveStatus::kInfeasible
-                                                : next->status;
+    record.status = statusOf(*next);
     record.iterations = next->report.iterations;
     record.warm_started = next->warm_started;
     record.pair_rounds = next->pair_rounds;
     record.history = next->report.history;
-    record.message = !next->invalid.empty()      ? next->invalid
-                     : !next->infeasible.empty() ? "infeasible: " + next->infeasible
-                                                 : next->message;
+    record.message = messageOf(*next);
     run.replans.push_back(record);
     run.replan_seconds += record.seconds;
     // A replan that did not solve its NLP leaves the plan before in charge.

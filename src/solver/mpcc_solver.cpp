@@ -5,6 +5,8 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "fesd_trajopt/solver/lpec.h"
 #include "fesd_trajopt/solver/square_newton.h"
@@ -311,7 +313,7 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
             const PrimalDualPoint& converged, double sigma,
             const IpoptSession::SolveSettings& settings, int attempts, bool require_stationarity,
             const SolveMonitor* monitor, MpccReport& report, bool accept_solved_start = false,
-            PrimalDualPoint* unsolved_iterate = nullptr) {
+            std::vector<double>* unsolved_iterate = nullptr) {
   problem.setBiactiveRule(options.polish_biactive_fraction, sigma);
   // After a failed attempt: its biactive pairs flipped, tried before the next attempt.
   std::vector<bool> biactive_flipped;
@@ -338,7 +340,7 @@ void polish(IpoptSession& session, const HomotopyOptions& options, RelaxedMpcc& 
     // Handed on only if it (nearly) solves its branch's rows: a stalled polish, not a failed one.
     if (!solved && attempt == 0 && unsolved_iterate != nullptr &&
         constraintViolation(problem, point.x) <= options.ipopt.near_solution_violation) {
-      *unsolved_iterate = point;
+      *unsolved_iterate = point.x;
     }
     double objective = outcome.objective;
     if (!solved && !flipped_biactive) biactive_flipped = problem.flipBiactivePairs(point.x.data());
@@ -462,7 +464,7 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
     // The objective the previous solution was polished with: its vanishing terms' weight.
     problem.setVanishingTermsWeight(options_.vanishing_terms_weight);
     problem.setRelaxation(previous.polish_sigma);
-    PrimalDualPoint unsolved;
+    std::vector<double> unsolved;
     polish(*session_, options_, problem, point, options_.complementarity_tolerance, settings,
            options_.polish_attempts, true, monitor_, report, true,
            options_.resume_from_unsolved_polish ? &unsolved : nullptr);
@@ -476,9 +478,9 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
     }
     report.wall_seconds = stopwatch.wallSeconds();
     report.cpu_seconds = stopwatch.cpuSeconds();
-    if (!unsolved.x.empty()) {
+    if (!unsolved.empty()) {
       point = PrimalDualPoint{};
-      point.x = unsolved.x;
+      point.x = std::move(unsolved);
       point.near_solution = true;
     }
     MpccReport homotopy =

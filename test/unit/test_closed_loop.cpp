@@ -42,6 +42,16 @@ TEST(ClosedLoop, AnInvalidTaskEndsBeforeItStarts) {
   EXPECT_TRUE(run.replans.empty());
 }
 
+TEST(ClosedLoop, AFirstPlanRefusedAsInfeasibleEndsItWithThatStatus) {
+  fesd::SceneTask task = fesd_test::pushAlongX();
+  task.bodies[1].target = Eigen::Vector2d(100.0, 0.0);  // beyond the pushers' reach in T = 2
+  const fesd::ClosedLoopRun run =
+      fesd::executeWithFeedback(task, fesd::TaskLimits{}, fesd::ClosedLoopOptions{});
+  EXPECT_EQ(run.status, fesd::SolveStatus::kInfeasible);
+  EXPECT_NE(run.message.find("the first plan: infeasible: body"), std::string::npos) << run.message;
+  EXPECT_TRUE(run.replans.empty());
+}
+
 TEST(ClosedLoop, AReplanRefusedAsInfeasibleSaysSoAndThePlanBeforeRunsOn) {
   // A first plan that pushes nothing: after 18 of 20 intervals the pusher cannot bring the puck
   // 3 further in the 0.2 s left.
