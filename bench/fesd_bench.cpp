@@ -75,6 +75,8 @@ const std::map<std::string, Command>& commands() {
         "    --polish-iterations=100\n"
         "    --ipopt-tol --mu-strategy --cold-mu-strategy --ipopt-print-level "
         "--ipopt=name:value,...\n"
+        "    --near-mu-strategy --warm-mu-globalization --near-mu-globalization (Ipopt's barrier\n"
+        "    in warm starts and starts next to a plan; monotone for both: the old path)\n"
         "    --near-solution-violation=1e-3 (< 0: a plan's point starts Ipopt cold)\n"
         "    --added-rows-mu-max=0.1 (a lazy round's cold start: the barrier's bound; 0: "
         "Ipopt's)"}},

@@ -282,7 +282,8 @@ IpoptSession::IpoptSession(const IpoptSettings& settings)
                            {"bound_frac", "0.01"},
                            {"slack_bound_push", "0.01"},
                            {"slack_bound_frac", "0.01"},
-                           {"bound_mult_init_method", "constant"}}) {
+                           {"bound_mult_init_method", "constant"},
+                           {"adaptive_mu_globalization", "obj-constr-filter"}}) {
   if (settings.linear_solver == kLdltSolver) registerLdltAsMa97();
   for (const auto& [name, value] : settings.extra_options) {
     if (cold_start_options_.count(name)) cold_start_options_[name] = value;
@@ -341,7 +342,9 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
                                           : settings_.max_iterations);
   if (point.has_multipliers) {
     // Ipopt's warm-start initialiser reads only the warm_start_* pushes: the cold ones may stay.
-    options.SetStringValue("mu_strategy", settings_.mu_strategy);
+    options.SetStringValue("mu_strategy",
+                           solve_settings.monotone_barrier ? "monotone" : settings_.mu_strategy);
+    options.SetStringValue("adaptive_mu_globalization", settings_.warm_start_mu_globalization);
     options.SetStringValue("warm_start_init_point", "yes");
     options.SetNumericValue("mu_init", solve_settings.warm_start_mu);
     for (const char* name :
@@ -352,7 +355,8 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
                                         : settings_.warm_start_bound_push);
     }
   } else if (near) {
-    options.SetStringValue("mu_strategy", settings_.mu_strategy);
+    options.SetStringValue("mu_strategy", settings_.near_solution_mu_strategy);
+    options.SetStringValue("adaptive_mu_globalization", settings_.near_solution_mu_globalization);
     options.SetStringValue("warm_start_init_point", "no");
     options.SetNumericValue("mu_init", settings_.near_solution_mu);
     for (const char* name : {"bound_push", "bound_frac", "slack_bound_push", "slack_bound_frac"}) {

@@ -457,6 +457,7 @@ MpccReport MpccSolver::solve(RelaxedMpcc& problem, const MpccReport& previous, d
         initialSettings(options_, problem, point.x, wall_time_budget, monitor_);
     settings.warm_start_mu = options_.ipopt.previous_solution_mu;
     settings.warm_start_bound_push = options_.ipopt.previous_solution_bound_push;
+    settings.monotone_barrier = true;
     settings.tolerance = options_.ipopt.tolerance;
     settings.max_iterations = options_.previous_polish_iterations > 0
                                   ? options_.previous_polish_iterations
@@ -618,6 +619,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
   if (!smooth && options_.polish_active_set) {
     settings.tolerance = options_.ipopt.tolerance;
     settings.barrier_target = 0.0;
+    settings.max_iterations = options_.polish_iterations;
     if (report.status == SolveStatus::kSuccess && !report.polished) {
       settings.warm_start_mu = options_.ipopt.warm_start_mu_factor * sigma;
       polish(*session_, options_, problem, point, sigma, settings, options_.polish_attempts, false,

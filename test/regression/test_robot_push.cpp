@@ -22,16 +22,19 @@ namespace {
 class RobotPush : public ::testing::TestWithParam<bool> {};
 
 // Every pair in reach (false: the node's default for the arm's 9) succeeds, its plan what its
-// re-simulation does. Lazy pairs (true) model the second hand sphere from round 2; its plan cuts
-// into the disc between stage points in the last interval, which graze rounds shrink (1.4e-2 to
-// 1.2e-5 in six) but do not close: the answer must not claim SUCCESS for it.
+// re-simulation does. Lazy pairs (true) model the second hand sphere from round 2; its plans cut
+// into the disc between stage points in the last interval (graze rounds shrink the cut from 1.4e-2
+// to 1.2e-5 but do not close it) or pass through it inside an element: through the node's default
+// request (the accuracy ladder) an answer it calls SUCCESS is accurate, else it says why not
+// (measured: ACCURACY_NOT_MET, the disc 0.127 short; SUCCESS with a monotone warm barrier).
 TEST_P(RobotPush, PlanarArmPushesTheDiscToItsTarget) {
   const fesd::SceneTask task = fesd::planarArmPushTask(
       std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf")));
   const fesd::Stopwatch stopwatch;
   fesd::SceneSolveOptions options = fesd_test::robotSolveOptions();
   options.lazy_pairs = GetParam();
-  const fesd::SceneOutcome outcome = fesd::solveSceneTask(task, {}, options);
+  const fesd::SceneOutcome outcome = GetParam() ? fesd::solveToAccuracy(task, {}, options, 1e-2)
+                                                : fesd::solveSceneTask(task, {}, options);
   const double seconds = stopwatch.wallSeconds();
   ASSERT_EQ(outcome.invalid, "");
   if (GetParam()) {
@@ -40,7 +43,7 @@ TEST_P(RobotPush, PlanarArmPushesTheDiscToItsTarget) {
       EXPECT_TRUE(outcome.grazes.empty());
       EXPECT_LT(outcome.verification.error, 1e-2 * outcome.length_scale);
     } else {
-      EXPECT_NE(outcome.message.find("cuts into a body"), std::string::npos) << outcome.message;
+      EXPECT_EQ(outcome.status, fesd::SolveStatus::kAccuracyNotMet) << outcome.message;
     }
     return;
   }
@@ -66,7 +69,7 @@ INSTANTIATE_TEST_SUITE_P(LazyAndAll, RobotPush, ::testing::Bool());
 
 // The arm push in other length units (the same robot and disc with every length times k): one
 // plan, its joints the same radians and the disc's path scaled; to the bit for a power of two,
-// else the same NLP to rounding, which moves Ipopt's path by a few iterations.
+// else the same NLP to rounding, which moves Ipopt's path (its free barrier) by a few iterations.
 TEST(RobotPush, ThePlanarArmInMillimetresIsTheSamePlan) {
   const fesd::SceneTask task = fesd::planarArmPushTask(
       std::make_shared<const fesd::KinematicModel>(fesd_test::loadShippedRobot("planar_arm.urdf")));
@@ -80,7 +83,8 @@ TEST(RobotPush, ThePlanarArmInMillimetresIsTheSamePlan) {
     if (k == 4.0) {
       EXPECT_EQ(other.report.iterations, metres.report.iterations);
     }
-    EXPECT_LE(std::abs(other.report.iterations - metres.report.iterations), 8);
+    EXPECT_LE(std::abs(other.report.iterations - metres.report.iterations),
+              metres.report.iterations / 5);
     EXPECT_NEAR(other.length_scale, k * metres.length_scale, 1e-12 * k);
     ASSERT_EQ(other.trajectory.states.size(), metres.trajectory.states.size());
     const int nq = task.scene.numJoints();

@@ -281,6 +281,37 @@ TEST(MpccSolver, APreviousActiveSetsPolishStopsAtItsOwnIterationCap) {
   EXPECT_NEAR(report.solution[corner.cut.x], 1.0 - 1e-4, 1e-6);
 }
 
+// The polish after the homotopy stops at polish_iterations too: a branch NLP that does not fit
+// its active set ran to Ipopt's limit of 500, three attempts at a time (cluttered seed 114).
+TEST(MpccSolver, TheLastRelaxationsPolishStopsAtThePolishCap) {
+  const auto polishes = [](const fesd::MpccReport& report) {
+    std::vector<fesd::HomotopyStep> steps;
+    for (const fesd::HomotopyStep& step : report.history) {
+      if (step.sigma == 0.0) steps.push_back(step);
+    }
+    return steps;
+  };
+  CutCorner corner(1e-4);
+  fesd::HomotopyOptions one_relaxation;
+  one_relaxation.sigma_initial = 1e-5;
+  one_relaxation.max_steps = 1;
+  const fesd::MpccReport uncapped =
+      fesd::MpccSolver(one_relaxation).solve(corner.cut.nlp, {1.0, 0.5});
+  ASSERT_EQ(uncapped.status, fesd::SolveStatus::kSuccess) << uncapped.message;
+  ASSERT_EQ(polishes(uncapped).size(), 1u);
+  ASSERT_GT(polishes(uncapped).front().iterations, 1);
+  fesd::HomotopyOptions capped = one_relaxation;
+  capped.polish_iterations = 1;
+  const fesd::MpccReport report = fesd::MpccSolver(capped).solve(corner.cut.nlp, {1.0, 0.5});
+  ASSERT_FALSE(polishes(report).empty());
+  for (const fesd::HomotopyStep& polish : polishes(report)) {
+    EXPECT_EQ(polish.iterations, 1);
+    EXPECT_FALSE(polish.converged);
+  }
+  // One relaxation at 1e-5 and no polish to tolerance: the solve says so.
+  EXPECT_EQ(report.status, fesd::SolveStatus::kComplementarityNotMet) << report.message;
+}
+
 /// Records the first point evaluated after each change of the relaxation: where each NLP of a
 /// solve starts (Ipopt's starting point, after its push off the bounds).
 struct StartRecordingAssembly : fesd::NlpAssembly {

@@ -21,10 +21,17 @@ struct IpoptSettings {
   double acceptable_tolerance = 1e-8;
   int max_iterations = 500;  ///< per relaxed NLP
   int print_level = 0;
-  /// Barrier strategy of warm-started solves: "monotone" needs fewer linear solves per iteration
-  /// than "adaptive" (whose quality function solves several systems), and every MUMPS call has
-  /// a fixed cost.
+  /// Barrier strategy of a warm start (the previous relaxation's solution and multipliers) and of
+  /// a start next to a plan's point. "monotone" suits a simulation's homotopy (Example 1:
+  /// "adaptive" took 1.5-2.2x the iterations); optimal control frees the barrier
+  /// (optimalControlHomotopy): there a tighter relaxation moves contacts, and a barrier fixed at
+  /// 1e-6 sigma crept to them in steps of 10-20 %.
   std::string mu_strategy = "monotone";
+  std::string near_solution_mu_strategy = "monotone";
+  /// With an "adaptive" strategy: how Ipopt judges the free barrier's progress (its
+  /// adaptive_mu_globalization) in those starts. Cold starts keep Ipopt's "obj-constr-filter".
+  std::string warm_start_mu_globalization = "obj-constr-filter";
+  std::string near_solution_mu_globalization = "obj-constr-filter";
   /// Barrier strategy of a cold start (the first relaxed NLP): "adaptive" needed about 40 %
   /// fewer iterations on the manipulation OCP.
   std::string cold_start_mu_strategy = "adaptive";
@@ -162,11 +169,12 @@ struct HomotopyOptions {
   /// going on. On cluttered seed 22's replans the homotopy then went on to sigma 1e-10 (130-190
   /// iterations there) from points that Cbc's LPEC certified B-stationary every time.
   bool accept_unsolved_branch_check = false;
-  /// Ipopt iterations for polishing an active set before the homotopy goes on (early polishing,
-  /// a previous solution's or a plan's): near its solution a branch NLP converges in tens of
+  /// Ipopt iterations for polishing an active set (early polishing, a previous solution's or a
+  /// plan's, the last relaxation's): near its solution a branch NLP converges in tens of
   /// iterations (warm replans 11-15, a plan refined onto a finer grid 15-40); one whose active
   /// set does not fit ran to Ipopt's limit of 500 (a lazy round's new pair the plan passed
-  /// through; an early polish of a push along a wall).
+  /// through; an early polish of a push along a wall; cluttered seed 114's last relaxations,
+  /// three attempts each time, until its budget ran out).
   int polish_iterations = 100;
   /// A homotopy that fails later still gets a polishing attempt from its best converged
   /// relaxed NLP, if that one's complementarity residual is at most this: polishing needs the
