@@ -114,13 +114,12 @@ void applyHomotopyArguments(const Arguments& args, fesd::HomotopyOptions& option
   options.polish_iterations = args.integer("polish-iterations", options.polish_iterations);
   options.barrier_factor = args.number("barrier-factor", options.barrier_factor);
   options.ipopt.tolerance = args.number("ipopt-tol", options.ipopt.tolerance);
-  options.ipopt.mu_strategy = args.text("mu-strategy", options.ipopt.mu_strategy);
-  options.ipopt.near_solution_mu_strategy =
-      args.text("near-mu-strategy", options.ipopt.near_solution_mu_strategy);
-  options.ipopt.warm_start_mu_globalization =
-      args.text("warm-mu-globalization", options.ipopt.warm_start_mu_globalization);
-  options.ipopt.near_solution_mu_globalization =
-      args.text("near-mu-globalization", options.ipopt.near_solution_mu_globalization);
+  fesd::BarrierStrategy& warm = options.ipopt.warm_start_barrier;
+  fesd::BarrierStrategy& near = options.ipopt.near_solution_barrier;
+  warm.mu_strategy = args.text("mu-strategy", warm.mu_strategy);
+  near.mu_strategy = args.text("near-mu-strategy", near.mu_strategy);
+  warm.globalization = args.text("warm-mu-globalization", warm.globalization);
+  near.globalization = args.text("near-mu-globalization", near.globalization);
   options.ipopt.cold_start_mu_strategy =
       args.text("cold-mu-strategy", options.ipopt.cold_start_mu_strategy);
   options.ipopt.print_level = args.integer("ipopt-print-level", options.ipopt.print_level);

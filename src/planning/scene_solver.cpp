@@ -507,7 +507,7 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
       ocp_options.homotopy.resume_from_unsolved_polish = true;
       // From the plan's point a monotone barrier (free there: cluttered seed 7's closed loop
       // took 8651 replan iterations, not 7526).
-      ocp_options.homotopy.ipopt.near_solution_mu_strategy = "monotone";
+      ocp_options.homotopy.ipopt.near_solution_barrier = BarrierStrategy{};
     }
     ocp_options.discretization.gap_guards = gapGuards(
         current, part, outcome.held_grazes, outcome.guard_points, ocp_options.discretization);

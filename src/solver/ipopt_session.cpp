@@ -263,6 +263,11 @@ void setMumpsOptions(Ipopt::OptionsList& options) {
   options.SetIntegerValue("mumps_mem_percent", 100);
 }
 
+void setBarrier(Ipopt::OptionsList& options, const BarrierStrategy& barrier) {
+  options.SetStringValue("mu_strategy", barrier.mu_strategy);
+  options.SetStringValue("adaptive_mu_globalization", barrier.globalization);
+}
+
 /// MUMPS keeps module-level state (its load balancing, dmumps_load): two solves in parallel
 /// threads of one process crashed there, and so did one thread's solve while another ended its
 /// MUMPS instance (destroying an Ipopt application ends the last one). Everything that runs
@@ -342,9 +347,8 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
                                           : settings_.max_iterations);
   if (point.has_multipliers) {
     // Ipopt's warm-start initialiser reads only the warm_start_* pushes: the cold ones may stay.
-    options.SetStringValue("mu_strategy",
-                           solve_settings.monotone_barrier ? "monotone" : settings_.mu_strategy);
-    options.SetStringValue("adaptive_mu_globalization", settings_.warm_start_mu_globalization);
+    setBarrier(options,
+               solve_settings.monotone_barrier ? BarrierStrategy{} : settings_.warm_start_barrier);
     options.SetStringValue("warm_start_init_point", "yes");
     options.SetNumericValue("mu_init", solve_settings.warm_start_mu);
     for (const char* name :
@@ -355,8 +359,7 @@ NlpOutcome IpoptSession::solve(const NlpProblem& problem, PrimalDualPoint& point
                                         : settings_.warm_start_bound_push);
     }
   } else if (near) {
-    options.SetStringValue("mu_strategy", settings_.near_solution_mu_strategy);
-    options.SetStringValue("adaptive_mu_globalization", settings_.near_solution_mu_globalization);
+    setBarrier(options, settings_.near_solution_barrier);
     options.SetStringValue("warm_start_init_point", "no");
     options.SetNumericValue("mu_init", settings_.near_solution_mu);
     for (const char* name : {"bound_push", "bound_frac", "slack_bound_push", "slack_bound_frac"}) {

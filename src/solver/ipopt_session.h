@@ -51,7 +51,7 @@ class IpoptSession {
     /// Ipopt's mu_target: > 0 ends the solve on the central path at this barrier parameter.
     double barrier_target = 0.0;
     /// A warm start on Ipopt's monotone barrier from warm_start_mu, whatever the session's
-    /// mu_strategy (a previous solution's start below the tolerance must not re-centre).
+    /// warm_start_barrier (a previous solution's start below the tolerance must not re-centre).
     bool monotone_barrier = false;
   };
   /// Solves from `point` and overwrites it with Ipopt's final iterate; a point with multipliers

@@ -178,8 +178,8 @@ TEST(ManipulationShowcase, AFreeBarrierInWarmStartsReachesTheSameOptimumInFewerI
   fesd::OcpOptions options;
   options.discretization.num_elements = 2;
   const fesd::OcpSolution free_barrier = fesd::OcpSolver(ocp, options).solve(guess);
-  options.homotopy.ipopt.mu_strategy = "monotone";
-  options.homotopy.ipopt.near_solution_mu_strategy = "monotone";
+  options.homotopy.ipopt.warm_start_barrier = fesd::BarrierStrategy{};  // monotone
+  options.homotopy.ipopt.near_solution_barrier = fesd::BarrierStrategy{};
   const fesd::OcpSolution monotone = fesd::OcpSolver(ocp, options).solve(guess);
   ASSERT_EQ(free_barrier.status, fesd::SolveStatus::kSuccess) << free_barrier.message;
   ASSERT_EQ(monotone.status, fesd::SolveStatus::kSuccess) << monotone.message;

@@ -27,10 +27,8 @@ inline DiscretizationOptions optimalControlDiscretization() {
 /// steps of 2e-3), a start next to a plan never returns to a monotone barrier.
 inline HomotopyOptions optimalControlHomotopy() {
   HomotopyOptions options;
-  options.ipopt.mu_strategy = "adaptive";
-  options.ipopt.near_solution_mu_strategy = "adaptive";
-  options.ipopt.warm_start_mu_globalization = "kkt-error";
-  options.ipopt.near_solution_mu_globalization = "never-monotone-mode";
+  options.ipopt.warm_start_barrier = {"adaptive", "kkt-error"};
+  options.ipopt.near_solution_barrier = {"adaptive", "never-monotone-mode"};
   return options;
 }
 

@@ -15,25 +15,28 @@ namespace fesd {
 /// The name of our own sparse LDL^T as IpoptSettings::linear_solver.
 inline const char* const kLdltSolver = "ldlt";
 
+/// Ipopt's barrier in one kind of start: its mu_strategy and, for "adaptive", how Ipopt judges the
+/// free barrier's progress (its adaptive_mu_globalization).
+struct BarrierStrategy {
+  std::string mu_strategy = "monotone";
+  std::string globalization = "obj-constr-filter";
+};
+
 /// Options passed to Ipopt for every relaxed NLP.
 struct IpoptSettings {
   double tolerance = 1e-10;
   double acceptable_tolerance = 1e-8;
   int max_iterations = 500;  ///< per relaxed NLP
   int print_level = 0;
-  /// Barrier strategy of a warm start (the previous relaxation's solution and multipliers) and of
-  /// a start next to a plan's point. "monotone" suits a simulation's homotopy (Example 1:
+  /// The barrier of a warm start (the previous relaxation's solution and multipliers) and of a
+  /// start next to a plan's point. "monotone" suits a simulation's homotopy (Example 1:
   /// "adaptive" took 1.5-2.2x the iterations); optimal control frees the barrier
   /// (optimalControlHomotopy): there a tighter relaxation moves contacts, and a barrier fixed at
   /// 1e-6 sigma crept to them in steps of 10-20 %.
-  std::string mu_strategy = "monotone";
-  std::string near_solution_mu_strategy = "monotone";
-  /// With an "adaptive" strategy: how Ipopt judges the free barrier's progress (its
-  /// adaptive_mu_globalization) in those starts. Cold starts keep Ipopt's "obj-constr-filter".
-  std::string warm_start_mu_globalization = "obj-constr-filter";
-  std::string near_solution_mu_globalization = "obj-constr-filter";
+  BarrierStrategy warm_start_barrier;
+  BarrierStrategy near_solution_barrier;
   /// Barrier strategy of a cold start (the first relaxed NLP): "adaptive" needed about 40 %
-  /// fewer iterations on the manipulation OCP.
+  /// fewer iterations on the manipulation OCP. Its globalization is Ipopt's (or extra_options').
   std::string cold_start_mu_strategy = "adaptive";
   /// kLdltSolver (ours: multifrontal LDL^T, state per solve, solves in parallel threads) or
   /// "mumps" (Debian's Ipopt's own; one solve per process at a time).
