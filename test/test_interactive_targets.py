@@ -86,8 +86,10 @@ class InteractiveTargetsTest(unittest.TestCase):
 
     def settled(self):
         """Now, once the solutions of requests already answered have arrived (a loaded machine
-        delivered a cold request's after the next drag had started): the start of a count."""
-        self.wait_until_quiet(0.0, 0.5, 30.0)
+        delivered a cold request's after the next drag had started): the start of a count. Quiet
+        from now on: a service's answer can come before its published solution, which counted as
+        the next drag's when none had arrived yet."""
+        self.wait_until_quiet(time.time(), 0.5, 30.0)
         return time.time()
 
     def object_end(self, solution):
