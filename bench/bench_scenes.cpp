@@ -36,8 +36,17 @@ fesd::SceneSolveOptions nodeDefaultOptions(double budget) {
   return options;
 }
 
-void applyLengthScaling(const Arguments& args, fesd::SceneSolveOptions& options) {
+void applySceneArguments(const Arguments& args, fesd::SceneSolveOptions& options) {
   options.length_scaling = args.flag("length-scaling", options.length_scaling);
+  const std::string threads = args.text("evaluation-threads", "measured");
+  using Threads = fesd::NlpAssembly::Threads;
+  if (threads == "one" || threads == "two" || threads == "measured") {
+    options.ocp.discretization.evaluation_threads = threads == "one"   ? Threads::kOne
+                                                    : threads == "two" ? Threads::kTwo
+                                                                       : Threads::kMeasured;
+  } else {
+    throw std::invalid_argument("--evaluation-threads=measured|one|two");
+  }
 }
 
 double timeDefaultScene(const fesd::SceneSolveOptions& options, double accuracy) {

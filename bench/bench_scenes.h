@@ -20,8 +20,9 @@ fesd::SceneTask showcaseWithRocks(int intervals, int rocks);
 fesd::SceneSolveOptions nodeDefaultOptions(double budget);
 
 /// --length-scaling=true|false: solve in units of the task's length scale (the default) or in
-/// its own units as given (SceneSolveOptions::length_scaling).
-void applyLengthScaling(const Arguments& args, fesd::SceneSolveOptions& options);
+/// its own units as given (SceneSolveOptions::length_scaling); --evaluation-threads=measured|
+/// one|two: how many threads evaluate the NLP's functions (DiscretizationOptions).
+void applySceneArguments(const Arguments& args, fesd::SceneSolveOptions& options);
 
 /// The node's default request of the default scene with `options` up the ladder to `accuracy`,
 /// three times (the first pays for what a node pays once: analyses, caches): prints a "#" line

@@ -92,7 +92,8 @@ const std::map<std::string, Command>& commands() {
         "    through the node's default request: status, iterations, seconds and the ratio to\n"
         "    k = 1's, first contact, objective / k^2 and the plan's deviation from k = 1's, CSV.\n"
         "    --factors=0.003,0.01,0.03,0.1,0.25,1,4,10,100 --budget=120 --accuracy=1e-2\n"
-        "    --length-scaling=true and the homotopy/Ipopt options of ocp-manipulation"}},
+        "    --length-scaling=true --evaluation-threads=measured|one|two and the homotopy/Ipopt\n"
+        "    options of ocp-manipulation"}},
       {"robot-push",
        {fesd_bench::robotPush,
         "A shipped robot push (examples/robot_scenes.h) after the showcase: status, wall time and\n"
@@ -101,7 +102,8 @@ const std::map<std::string, Command>& commands() {
         "    --pushed=puck|bar (the Panda's bar, turned on the table) --pairs=lazy|all\n"
         "    --intervals --horizon --elements --stages --budget=150 --margin --verify=true\n"
         "    --showcase=true --accuracy=0 (> 0: the accuracy ladder to it, as the node does)\n"
-        "    --length-scaling=true and the homotopy/Ipopt options of ocp-manipulation"}},
+        "    --length-scaling=true --evaluation-threads=measured|one|two and the homotopy/Ipopt\n"
+        "    options of ocp-manipulation"}},
       {"robot-pushes",
        {fesd_bench::robotPushes,
         "Every shipped robot push (Panda puck and bar, UR3e, planar iiwa, planar arm) through\n"
@@ -110,7 +112,8 @@ const std::map<std::string, Command>& commands() {
         "    --scenes=panda_puck,... --node-horizon (5 s, 40 intervals for all) --budget=120\n"
         "    --accuracy=1e-2 --all-pairs-up-to=32 --repeat=3 (seconds: the median of the runs\n"
         "    after the first, as the default scene's)\n"
-        "    --length-scaling=true and the homotopy/Ipopt options of ocp-manipulation"}},
+        "    --length-scaling=true --evaluation-threads=measured|one|two and the homotopy/Ipopt\n"
+        "    options of ocp-manipulation"}},
       {"mpcc-methods",
        {fesd_bench::mpccMethods,
         "The homotopy and the active-set method (LPECs, branch NLPs) on the node's default\n"

@@ -50,7 +50,7 @@ int nodeDefaultSweep(const Arguments& args, const std::vector<std::string>& fami
   options.first_round_margin = args.number("first-margin", options.first_round_margin);
   options.ocp.guess_sigma = args.number("guess-sigma", options.ocp.guess_sigma);
   applyHomotopyArguments(args, options.ocp.homotopy);
-  applyLengthScaling(args, options);
+  applySceneArguments(args, options);
   const double accuracy = args.number("accuracy", 1e-2);
   const double horizon = args.number("horizon", 0.0);
   const int intervals = args.integer("intervals", 0);

@@ -54,7 +54,7 @@ int pushT(const Arguments& args) {
   const int starts = args.integer("starts", 16);
   fesd::SceneSolveOptions options = nodeDefaultOptions(args.number("budget", 60.0));
   applyHomotopyArguments(args, options.ocp.homotopy);
-  applyLengthScaling(args, options);
+  applySceneArguments(args, options);
   const double accuracy = args.number("accuracy", 1e-2);
   const std::string trajectory = args.text("trajectory", "");
   const int trajectory_seed = args.integer("trajectory-seed", first_seed);

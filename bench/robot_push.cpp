@@ -51,7 +51,7 @@ int robotPush(const Arguments& args) {
   options.pair_margin = args.number("margin", options.pair_margin);
   options.verify = args.flag("verify", true);
   applyHomotopyArguments(args, options.ocp.homotopy);
-  applyLengthScaling(args, options);
+  applySceneArguments(args, options);
   const bool with_showcase = args.flag("showcase", true);
   // > 0: the node's default request (the accuracy ladder to this target, in units of the
   // scene's length scale; of the task's own with --length-scaling=false).

@@ -64,7 +64,7 @@ int robotPushes(const Arguments& args) {
   fesd::SceneSolveOptions options = nodeDefaultOptions(args.number("budget", 120.0));
   options.all_pairs_up_to = args.integer("all-pairs-up-to", 32);
   applyHomotopyArguments(args, options.ocp.homotopy);
-  applyLengthScaling(args, options);
+  applySceneArguments(args, options);
   const double accuracy = args.number("accuracy", 1e-2);
   const std::vector<std::string> only = args.texts("scenes", {});
   // What a request that names neither gets: the node's horizon and intervals.

@@ -51,7 +51,7 @@ int scaleSweep(const Arguments& args) {
   if (factors.empty()) factors = default_factors;
   fesd::SceneSolveOptions options = nodeDefaultOptions(args.number("budget", 120.0));
   applyHomotopyArguments(args, options.ocp.homotopy);
-  applyLengthScaling(args, options);
+  applySceneArguments(args, options);
   const double accuracy = args.number("accuracy", 1e-2);
   args.rejectUnused();
   const fesd::SceneTask showcase = fesd::manipulation_example::task(40);

@@ -37,6 +37,7 @@ PdsDiscretization::PdsDiscretization(OcpDefinition ocp, DiscretizationOptions op
   buildForceConstraints();
   addCostsAndConstraints(nlp_, grid_, ocp_, tableau_);
   nlp_.finalize();
+  nlp_.setEvaluationThreads(options_.evaluation_threads);
 }
 
 void PdsDiscretization::buildVariables() {

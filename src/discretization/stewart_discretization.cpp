@@ -31,6 +31,7 @@ StewartDiscretization::StewartDiscretization(OcpDefinition ocp, DiscretizationOp
   buildStepEquilibration();
   addCostsAndConstraints(nlp_, grid_, ocp_, tableau_);
   nlp_.finalize();
+  nlp_.setEvaluationThreads(options_.evaluation_threads);
 }
 
 void StewartDiscretization::buildVariables() {

@@ -52,6 +52,14 @@ CombinationRow::CombinationRow(std::shared_ptr<const SmoothFunction> function, i
   }
 }
 
+std::shared_ptr<const SmoothFunction> CombinationRow::threadCopy(ThreadCopies& copies) const {
+  const std::shared_ptr<const SmoothFunction> function = copies.function(function_);
+  if (function == function_) return nullptr;
+  auto copy = std::make_shared<CombinationRow>(*this);
+  copy->function_ = function;
+  return copy;
+}
+
 std::vector<double> CombinationRow::combined(const double* z) const {
   std::vector<double> x(function_->inputSize(), 0.0);
   const size_t m = coordinates_.size();

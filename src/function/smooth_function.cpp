@@ -10,4 +10,11 @@ SparsityPattern SparsityPattern::dense(int num_rows, int num_cols, bool lower_tr
   return pattern;
 }
 
+std::shared_ptr<const SmoothFunction> ThreadCopies::function(
+    const std::shared_ptr<const SmoothFunction>& f) {
+  const std::shared_ptr<const SmoothFunction> copy =
+      of<SmoothFunction>(f.get(), [&] { return f->threadCopy(*this); });
+  return copy ? copy : f;
+}
+
 }  // namespace fesd

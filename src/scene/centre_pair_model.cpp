@@ -233,6 +233,10 @@ class PairSet {
   }
   int size() const { return static_cast<int>(system_.pairs.size()); }
   const CentrePairSystem& system() const { return system_; }
+  /// Another thread's: its own evaluator (kinematics cache) and buffers.
+  std::shared_ptr<const PairSet> threadCopy(ThreadCopies& copies) const {
+    return copies.of<PairSet>(this, [&] { return std::make_shared<const PairSet>(system_); });
+  }
   const PairLayout& layout(int k) const { return layouts_[k]; }
   /// Sets the state; then local(k) gives pair k's derivatives there, value(k) its value alone.
   void setState(const double* x) const { evaluator_.setState(x); }
@@ -342,6 +346,11 @@ class CentreConstraints : public SmoothFunction {
     }
   }
   const SparsityPattern& hessianPattern() const override { return hessian_; }
+  std::shared_ptr<const SmoothFunction> threadCopy(ThreadCopies& copies) const override {
+    auto copy = std::make_shared<CentreConstraints>(*this);
+    copy->pairs_ = pairs_->threadCopy(copies);
+    return copy;
+  }
   void evaluateHessian(const double* x, const double* weights, double* values) const override {
     std::fill(values, values + hessian_.nonzeros(), 0.0);
     pairs_->setState(x);
@@ -418,6 +427,11 @@ class CentreVelocity : public SmoothFunction {
 
   int inputSize() const override { return nx_ + nu_ + pairs_->size(); }
   int outputSize() const override { return outputs_; }
+  std::shared_ptr<const SmoothFunction> threadCopy(ThreadCopies& copies) const override {
+    auto copy = std::make_shared<CentreVelocity>(*this);
+    copy->pairs_ = pairs_->threadCopy(copies);
+    return copy;
+  }
 
   void evaluate(const double* z, double* v) const override {
     std::fill(v, v + outputs_, 0.0);

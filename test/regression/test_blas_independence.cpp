@@ -165,6 +165,18 @@ std::uint64_t probeDigest() {
   digest.add(push_t.trajectory);
   digest.add(push_t.report.iterations);
   digest.add(push_t.verification.error);
+  // The same with the NLP's functions evaluated on two threads (copies of the turning body's
+  // pair functions beside the originals): the same bits.
+  fesd::SceneSolveOptions two_threads = turning;
+  two_threads.ocp.discretization.evaluation_threads = fesd::NlpAssembly::Threads::kTwo;
+  const fesd::SceneOutcome push_t_two =
+      fesd::solveSceneTask(fesd::push_t::randomStart(0), fesd::TaskLimits{}, two_threads);
+  Digest one_thread, two_thread;
+  one_thread.add(push_t.trajectory);
+  two_thread.add(push_t_two.trajectory);
+  EXPECT_EQ(one_thread.value(), two_thread.value());
+  EXPECT_EQ(push_t_two.report.iterations, push_t.report.iterations);
+  digest.add(push_t_two.trajectory);
   // A lazy round started cold from a plan through its new pairs (the session's second Ipopt
   // application, its barrier bounded).
   const fesd::SceneOutcome posts = fesd::solveSceneTask(

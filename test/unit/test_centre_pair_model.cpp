@@ -262,3 +262,48 @@ TEST(CentrePairModel, HeldCoordinateRatesAreTheFreeVelocityAlongTheirDirections)
 }
 
 }  // namespace
+
+namespace {
+
+/// Values, Jacobian and Hessian of a function and of another at z, bit for bit.
+void expectSameBits(const fesd::SmoothFunction& a, const fesd::SmoothFunction& b,
+                    const Eigen::VectorXd& z, const Eigen::VectorXd& w) {
+  Eigen::VectorXd ya(a.outputSize()), yb(b.outputSize());
+  a.evaluate(z.data(), ya.data());
+  b.evaluate(z.data(), yb.data());
+  EXPECT_TRUE((ya.array() == yb.array()).all());
+  std::vector<double> ja(a.jacobianPattern().nonzeros()), jb(ja.size());
+  a.evaluateJacobian(z.data(), ja.data());
+  b.evaluateJacobian(z.data(), jb.data());
+  EXPECT_EQ(ja, jb);
+  std::vector<double> ha(a.hessianPattern().nonzeros()), hb(ha.size());
+  a.evaluateHessian(z.data(), w.data(), ha.data());
+  b.evaluateHessian(z.data(), w.data(), hb.data());
+  EXPECT_EQ(ha, hb);
+}
+
+}  // namespace
+
+/// Another thread's copies of a model's velocity and constraints: their own kinematics (one
+/// copy for both, as the originals share theirs), the same bits as the originals, evaluated
+/// alternately with them at other states.
+TEST(CentrePairModel, ThreadCopiesShareTheirOwnKinematicsAndGiveTheSameBits) {
+  const fesd::CentrePairSystem system = mixedSystem("panda_spherized.urdf", 3);
+  const auto model = fesd::centrePairModel(system, "test");
+  fesd::ThreadCopies copies;
+  const auto velocity = copies.function(model->velocity());
+  const auto constraints = copies.function(model->constraints());
+  ASSERT_NE(velocity, model->velocity());
+  ASSERT_NE(constraints, model->constraints());
+  std::mt19937 random(5);
+  for (int trial = 0; trial < 4; ++trial) {
+    const Eigen::VectorXd z = fesd_test::randomVector(velocity->inputSize(), random);
+    const Eigen::VectorXd other = fesd_test::randomVector(velocity->inputSize(), random);
+    double ignored[16];
+    model->constraints()->evaluate(other.data(), ignored);  // the originals elsewhere
+    expectSameBits(*model->velocity(), *velocity, z,
+                   fesd_test::randomVector(system.state_size, random));
+    expectSameBits(*model->constraints(), *constraints, z.head(system.state_size),
+                   fesd_test::randomVector(7, random));
+  }
+}

@@ -76,3 +76,28 @@ TEST(CombinationRow, RefusesAMissingRowOrNoPoint) {
 }
 
 }  // namespace
+
+/// y = F(z) through a scratch it keeps: copied for another thread.
+class Remembering : public TwoRows {
+ public:
+  std::shared_ptr<const fesd::SmoothFunction> threadCopy(fesd::ThreadCopies&) const override {
+    return std::make_shared<Remembering>();
+  }
+};
+
+TEST(CombinationRow, ACopyForAnotherThreadCopiesItsFunctionWhereThatKeepsState) {
+  const std::vector<double> weights{0.3, -0.2, 0.9};
+  const auto shared =
+      std::make_shared<fesd::CombinationRow>(std::make_shared<TwoRows>(), 1, weights);
+  const auto stateful =
+      std::make_shared<fesd::CombinationRow>(std::make_shared<Remembering>(), 1, weights);
+  fesd::ThreadCopies copies;
+  EXPECT_EQ(copies.function(shared), shared);
+  const auto copy = copies.function(stateful);
+  ASSERT_NE(copy, stateful);
+  const std::vector<double> z{0.5, -1.0, 2.0, 0.3, -0.4, 1.1};
+  double original = 0.0, copied = 0.0;
+  stateful->evaluate(z.data(), &original);
+  copy->evaluate(z.data(), &copied);
+  EXPECT_EQ(original, copied);
+}

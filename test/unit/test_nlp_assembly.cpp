@@ -1,7 +1,11 @@
 // NlpAssembly's active-set tools (nlp/nlp_assembly.cpp): biactiveDescent at a wrongly fixed
 // side, active-set polishing (fixActiveSet) when a complementarity side holds fixed data, as
 // c and lambda at a simulation step's start point do: such a side cannot be made zero, and
-// pairs left biactive (setBiactiveRule).
+// pairs left biactive (setBiactiveRule); its evaluations on two threads, bit for bit those on
+// one.
+#include <cmath>
+#include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -230,4 +234,140 @@ TEST(NlpAssembly, AScaledTermsDerivativesAreThoseOfTheirOwnPoint) {
     symmetric.diagonal() = triangle.diagonal();
     EXPECT_TRUE(symmetric.isApprox(expected_hessian)) << symmetric;
   }
+}
+
+namespace {
+
+/// y = (z0 sin z1, z0 z1^2) through a mutable scratch (state between calls, as the kinematics of
+/// pair functions): its copies for another thread are counted.
+class Stateful : public fesd::SmoothFunction {
+ public:
+  explicit Stateful(std::shared_ptr<int> copies) : copies_(std::move(copies)) {
+    for (int r = 0; r < 2; ++r) {
+      for (int c = 0; c < 2; ++c) jacobian_.add(r, c);
+    }
+    for (auto [r, c] : {std::pair{1, 0}, {1, 1}}) hessian_.add(r, c);
+  }
+  int inputSize() const override { return 2; }
+  int outputSize() const override { return 2; }
+  void evaluate(const double* z, double* y) const override {
+    remember(z);
+    y[0] = z[0] * sine_;
+    y[1] = z[0] * z[1] * z[1];
+  }
+  const fesd::SparsityPattern& jacobianPattern() const override { return jacobian_; }
+  void evaluateJacobian(const double* z, double* v) const override {
+    remember(z);
+    v[0] = sine_;
+    v[1] = z[0] * cosine_;
+    v[2] = z[1] * z[1];
+    v[3] = 2.0 * z[0] * z[1];
+  }
+  const fesd::SparsityPattern& hessianPattern() const override { return hessian_; }
+  void evaluateHessian(const double* z, const double* w, double* v) const override {
+    remember(z);
+    v[0] = w[0] * cosine_ + w[1] * 2.0 * z[1];
+    v[1] = -w[0] * z[0] * sine_ + w[1] * 2.0 * z[0];
+  }
+  std::shared_ptr<const fesd::SmoothFunction> threadCopy(fesd::ThreadCopies&) const override {
+    ++*copies_;
+    return std::make_shared<Stateful>(copies_);
+  }
+
+ private:
+  void remember(const double* z) const {
+    sine_ = std::sin(z[1]);
+    cosine_ = std::cos(z[1]);
+  }
+  std::shared_ptr<int> copies_;
+  mutable double sine_ = 0.0, cosine_ = 0.0;
+  fesd::SparsityPattern jacobian_, hessian_;
+};
+
+/// 600 terms of one stateful function on overlapping pairs of 30 variables, half of them scaled
+/// by a variable, into 12 rows and the objective: every row and Hessian entry sums many terms.
+fesd::NlpAssembly manyTerms(const std::shared_ptr<int>& copies) {
+  fesd::NlpAssembly nlp;
+  const int first = nlp.addVariables(30, -kInf, kInf);
+  const int rows = nlp.addRows(24, 0.0, 0.0);
+  const auto function = std::make_shared<Stateful>(copies);
+  for (int t = 0; t < 600; ++t) {
+    const int a = first + (7 * t) % 30, b = first + (11 * t + 3) % 30;
+    const int scale = t % 2 ? first + (t % 5) : -1;
+    nlp.addFunctionTerm(function, {a, b == a ? (b + 1) % 30 : b}, scale,
+                        {{rows + 2 * (t % 12), 1.0 + 0.1 * (t % 3)}, {rows + 2 * (t % 5), -0.7}});
+  }
+  nlp.finalize();
+  return nlp;
+}
+
+}  // namespace
+
+/// The terms evaluated on two threads give the same bits as on one: the additions keep the
+/// terms' order, and the helper evaluates copies of a function that keeps state.
+TEST(NlpAssembly, TwoThreadsEvaluateToTheSameBitsAsOne) {
+  const auto one_copies = std::make_shared<int>(0), two_copies = std::make_shared<int>(0);
+  fesd::NlpAssembly one = manyTerms(one_copies), two = manyTerms(two_copies);
+  one.setEvaluationThreads(fesd::NlpAssembly::Threads::kOne);
+  two.setEvaluationThreads(fesd::NlpAssembly::Threads::kTwo);
+  std::vector<double> x(30), y(24);
+  for (int i = 0; i < 30; ++i) x[i] = std::sin(1.3 * i) + 0.1 * i;
+  for (int r = 0; r < 24; ++r) y[r] = std::cos(0.7 * r);
+  const auto bits = [](const std::vector<double>& a, const std::vector<double>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+  };
+  for (int repeat = 0; repeat < 20; ++repeat) {
+    std::vector<double> g1(24), g2(24), j1(one.jacobianPattern().nonzeros()), j2(j1.size()),
+        h1(one.hessianPattern().nonzeros()), h2(h1.size());
+    one.constraints(x.data(), g1.data());
+    two.constraints(x.data(), g2.data());
+    one.jacobian(x.data(), j1.data());
+    two.jacobian(x.data(), j2.data());
+    one.hessian(x.data(), 0.5, y.data(), h1.data());
+    two.hessian(x.data(), 0.5, y.data(), h2.data());
+    ASSERT_TRUE(bits(g1, g2)) << "repeat " << repeat;
+    ASSERT_TRUE(bits(j1, j2)) << "repeat " << repeat;
+    ASSERT_TRUE(bits(h1, h2)) << "repeat " << repeat;
+    x[repeat % 30] += 0.01;
+  }
+  EXPECT_EQ(*one_copies, 0);
+  EXPECT_EQ(*two_copies, 1);  // one copy of the one function, for the helper
+}
+
+namespace {
+
+/// A function that fails at every point, as do its copies.
+class Failing : public Stateful {
+ public:
+  Failing() : Stateful(std::make_shared<int>(0)) {}
+  void evaluate(const double*, double*) const override { throw std::runtime_error("failed"); }
+  std::shared_ptr<const fesd::SmoothFunction> threadCopy(fesd::ThreadCopies&) const override {
+    return std::make_shared<Failing>();
+  }
+};
+
+}  // namespace
+
+/// What a function throws reaches the caller on two threads as on one, whichever thread met it,
+/// and the NLP evaluates on after it.
+TEST(NlpAssembly, AFunctionsFailureOnTwoThreadsReachesTheCaller) {
+  fesd::NlpAssembly nlp;
+  const int first = nlp.addVariables(4, -kInf, kInf);
+  const int row = nlp.addRows(2, 0.0, 0.0);
+  const auto failing = std::make_shared<Failing>();
+  const auto fine = std::make_shared<Stateful>(std::make_shared<int>(0));
+  for (int t = 0; t < 200; ++t) {
+    nlp.addFunctionTerm(t == 150 ? failing : fine, {first + t % 3, first + 3}, -1,
+                        {{row, 1.0}, {row + 1, 1.0}});
+  }
+  nlp.finalize();
+  nlp.setEvaluationThreads(fesd::NlpAssembly::Threads::kTwo);
+  const std::vector<double> x{0.1, 0.2, 0.3, 0.4};
+  std::vector<double> g(2);
+  for (int repeat = 0; repeat < 50; ++repeat) {
+    EXPECT_THROW(nlp.constraints(x.data(), g.data()), std::runtime_error);
+  }
+  std::vector<double> jacobian(nlp.jacobianPattern().nonzeros());
+  nlp.jacobian(x.data(), jacobian.data());  // Failing's Jacobian is Stateful's
+  EXPECT_TRUE(std::isfinite(jacobian[0]));
 }

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "fesd_trajopt/discretization/butcher_tableau.h"
+#include "fesd_trajopt/nlp/nlp_assembly.h"
 
 namespace fesd {
 
@@ -82,6 +83,8 @@ struct DiscretizationOptions {
   /// away from collapsed elements. At sigma -> 0 it vanishes and only the exact step
   /// equilibration remains. 0 switches it off.
   double step_regularization = 1.0;
+  /// How many threads evaluate the NLP's functions (the same bits on one or two).
+  NlpAssembly::Threads evaluation_threads = NlpAssembly::Threads::kMeasured;
 };
 
 }  // namespace fesd

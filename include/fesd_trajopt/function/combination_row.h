@@ -28,6 +28,7 @@ class CombinationRow : public SmoothFunction {
   void evaluateJacobian(const double* z, double* values) const override;
   const SparsityPattern& hessianPattern() const override { return hessian_pattern_; }
   void evaluateHessian(const double* z, const double* weights, double* values) const override;
+  std::shared_ptr<const SmoothFunction> threadCopy(ThreadCopies& copies) const override;
 
  private:
   /// F's input at the combination of the points in z.

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -7,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "fesd_trajopt/nlp/helper_thread.h"
 #include "fesd_trajopt/nlp/nlp_problem.h"
 
 namespace fesd {
@@ -62,6 +65,12 @@ class NlpAssembly : public RelaxedMpcc {
   void addFunctionTerm(std::shared_ptr<const SmoothFunction> function, std::vector<int> inputs,
                        int scale_variable, std::vector<Target> targets);
   void finalize();
+  /// How many threads evaluate the function terms: measured (values, Jacobian and Hessian each
+  /// on two once kSlowEvaluations of them in a row took kTwoThreadSeconds on one), or one or two
+  /// always. The values are the same bits either way.
+  enum class Threads { kMeasured, kOne, kTwo };
+  void setEvaluationThreads(Threads threads);
+  static constexpr double kTwoThreadSeconds = 500e-6;
 
   void setVariableBounds(int variable, double lower, double upper);
   void setRowBounds(int row, double lower, double upper);
@@ -150,7 +159,35 @@ class NlpAssembly : public RelaxedMpcc {
     std::vector<int> scale_jacobian_slots;  // per target, per output
     std::vector<int> hessian_slots;         // per Hessian entry
     std::vector<int> scale_hessian_slots;   // per input (-1 when F does not depend on it)
+    size_t span = 0;                        ///< where its TermSpan starts in term_spans_
   };
+  /// One term's evaluations in one array: F's values, Jacobian, Hessian and the weights of its
+  /// outputs in the Hessian.
+  struct TermSpan {
+    TermSpan(const SmoothFunction& f, double* start)
+        : values(start),
+          jacobian(values + f.outputSize()),
+          hessian(jacobian + f.jacobianPattern().nonzeros()),
+          weights(hessian + f.hessianPattern().nonzeros()) {}
+    static size_t size(const SmoothFunction& f) {
+      return 2 * f.outputSize() + f.jacobianPattern().nonzeros() + f.hessianPattern().nonzeros();
+    }
+    double *values, *jacobian, *hessian, *weights;
+  };
+  /// Evaluates a term at its arguments z (with the function given: another thread's copy).
+  using TermEvaluation =
+      std::function<void(const FunctionTerm&, const SmoothFunction&, const double* z, TermSpan&)>;
+  /// Adds an evaluated term into the NLP's values.
+  using TermAddition = std::function<void(const FunctionTerm&, const TermSpan&)>;
+  enum class Pass { kValues, kJacobian, kHessian };
+  /// Every term evaluated at x and added in the terms' order: the same bits on one thread or two
+  /// (each term into its own span; this thread adds the spans in order as they are done).
+  void forEachTerm(Pass pass, const double* x, const TermEvaluation& evaluate,
+                   const TermAddition& add) const;
+  void forEachTermOnOneThread(const double* x, const TermEvaluation& evaluate,
+                              const TermAddition& add) const;
+  void forEachTermOnTwoThreads(const double* x, const TermEvaluation& evaluate,
+                               const TermAddition& add) const;
   /// The active set fixActiveSet would fix at x: per pair whether the left side is the zero
   /// one, and how ambiguous the choice is (min/max of the two sides; 0 when data decides).
   struct ActiveSetChoice {
@@ -202,9 +239,24 @@ class NlpAssembly : public RelaxedMpcc {
                         const std::vector<int>& left_out = {}) const;
   bool fixPairs(const std::vector<bool>& left_is_zero, const std::vector<bool>& biactive,
                 const double* x, const std::vector<int>& left_free = {});
-  // Scratch buffers sized to the largest function term (evaluation is single-threaded per NLP).
-  mutable std::vector<double> scratch_values_, scratch_jacobian_, scratch_hessian_,
-      scratch_weights_, scratch_inputs_;
+  // Scratch buffers sized to the largest function term (objective terms; the others' when
+  // evaluated on one thread).
+  mutable std::vector<double> scratch_values_, scratch_jacobian_, scratch_inputs_, scratch_span_;
+  static constexpr int kTermsPerChunk = 16;  ///< what a thread claims at a time
+  static constexpr int kSlowEvaluations = 3;
+  /// How a pass is evaluated; while measured, its slow evaluations in a row.
+  struct PassThreads {
+    Threads mode = Threads::kMeasured;
+    int slow = 0;
+  };
+  mutable std::array<PassThreads, 3> pass_threads_;  ///< per Pass
+  size_t spans_size_ = 0;
+  /// For two threads: the helper thread, the function each term evaluates there (its copy,
+  /// where it keeps state), the helper's arguments and every term's span. Made when first used.
+  mutable std::unique_ptr<HelperThread> helper_;
+  mutable std::vector<std::shared_ptr<const SmoothFunction>> helper_functions_;
+  mutable std::vector<double> helper_inputs_, term_spans_;
+  mutable std::unique_ptr<std::atomic<bool>[]> chunk_done_;  ///< per chunk of terms
 };
 
 }  // namespace fesd
