@@ -112,6 +112,12 @@ void NlpAssembly::finalize() {
   size_t scratch = 0, spans = 0, span = 0;
   for (FunctionTerm& term : terms_) {
     const SmoothFunction& f = *term.function;
+    for (const Target& target : term.targets) {
+      if (target.row != kObjective &&
+          (target.row < 0 || target.row + f.outputSize() > numConstraints())) {
+        throw std::invalid_argument("NlpAssembly: a function term's rows lie outside the NLP's");
+      }
+    }
     const SparsityPattern& jac = f.jacobianPattern();
     for (const Target& target : term.targets) {
       if (target.row == kObjective) continue;
@@ -247,64 +253,74 @@ void NlpAssembly::forEachTerm(Pass pass, const double* x, const TermEvaluation& 
   }
 }
 
-void NlpAssembly::forEachTermOnTwoThreads(const double* x, const TermEvaluation& evaluate,
-                                          const TermAddition& add) const {
-  const int count = static_cast<int>(terms_.size());
-  const int chunks = (count + kTermsPerChunk - 1) / kTermsPerChunk;
-  if (!helper_) {
+bool NlpAssembly::startHelper() const {
+  // Built whole before it is kept: a copy or the thread that fails leaves one thread in charge.
+  try {
     ThreadCopies copies;
-    for (const FunctionTerm& term : terms_) {
-      helper_functions_.push_back(copies.function(term.function));
-    }
+    std::vector<std::shared_ptr<const SmoothFunction>> functions;
+    for (const FunctionTerm& term : terms_) functions.push_back(copies.function(term.function));
+    const int chunks = (static_cast<int>(terms_.size()) + kTermsPerChunk - 1) / kTermsPerChunk;
+    auto done = std::make_unique<std::atomic<bool>[]>(chunks);
+    auto helper = std::make_unique<HelperThread>();
     helper_inputs_.resize(scratch_inputs_.size());
     term_spans_.resize(spans_size_);
-    chunk_done_ = std::make_unique<std::atomic<bool>[]>(chunks);
-    helper_ = std::make_unique<HelperThread>();
+    helper_functions_ = std::move(functions);
+    chunk_done_ = std::move(done);
+    helper_ = std::move(helper);
+    return true;
+  } catch (const std::exception&) {
+    return false;
   }
+}
+
+void NlpAssembly::forEachTermOnTwoThreads(const double* x, const TermEvaluation& evaluate,
+                                          const TermAddition& add) const {
+  if (!helper_ && !startHelper()) {
+    for (PassThreads& pass : pass_threads_) pass.mode = Threads::kOne;
+    return forEachTermOnOneThread(x, evaluate, add);
+  }
+  const int count = static_cast<int>(terms_.size());
+  const int chunks = (count + kTermsPerChunk - 1) / kTermsPerChunk;
   for (int c = 0; c < chunks; ++c) chunk_done_[c].store(false, std::memory_order_relaxed);
-  const auto span = [&](const FunctionTerm& term, const SmoothFunction& f) {
-    return TermSpan(f, term_spans_.data() + term.span);
+  // A term's span has the original's layout on either thread (a copy's patterns are its).
+  const auto span = [&](const FunctionTerm& term) {
+    return TermSpan(*term.function, term_spans_.data() + term.span);
   };
   std::atomic<int> next{0};
-  std::atomic<bool> helper_failed{false};  // then its chunk is never done: stop waiting
-  int added = 0;                           // chunks added, in order (by this thread only)
+  // A failure on either thread ends the claims; the caller stops waiting for the helper's.
+  std::atomic<bool> failed{false};
+  int added = 0;  // chunks added, in order (by this thread only)
   const auto addDone = [&](bool wait) {
     for (; added < chunks; ++added) {
       while (!chunk_done_[added].load(std::memory_order_acquire)) {
-        if (!wait || helper_failed.load()) return;
+        if (!wait || failed.load()) return;
         std::this_thread::yield();
       }
       for (int t = added * kTermsPerChunk; t < std::min(count, (added + 1) * kTermsPerChunk); ++t) {
-        add(terms_[t], span(terms_[t], *terms_[t].function));
+        add(terms_[t], span(terms_[t]));
       }
     }
   };
   // Each thread evaluates the chunks it claims; this one also adds the evaluated chunks in the
-  // terms' order as they are done, while the data is fresh.
-  // HelperThread::runBeside rethrows what a function threw, on either thread.
+  // terms' order as they are done, while the data is fresh. HelperThread::runBeside rethrows
+  // what a function threw, on either thread.
   helper_->runBeside([&](int thread) {
     std::vector<double>& inputs = thread == 0 ? scratch_inputs_ : helper_inputs_;
-    const auto evaluateChunk = [&](int chunk) {
-      for (int t = chunk * kTermsPerChunk; t < std::min(count, (chunk + 1) * kTermsPerChunk); ++t) {
-        const FunctionTerm& term = terms_[t];
-        const SmoothFunction& f = thread == 0 ? *term.function : *helper_functions_[t];
-        TermSpan evaluated = span(term, f);
-        evaluate(term, f, gather(term.inputs, x, inputs), evaluated);
+    try {
+      for (int chunk; !failed.load() && (chunk = next.fetch_add(1)) < chunks;) {
+        for (int t = chunk * kTermsPerChunk; t < std::min(count, (chunk + 1) * kTermsPerChunk);
+             ++t) {
+          const FunctionTerm& term = terms_[t];
+          TermSpan evaluated = span(term);
+          evaluate(term, thread == 0 ? *term.function : *helper_functions_[t],
+                   gather(term.inputs, x, inputs), evaluated);
+        }
+        chunk_done_[chunk].store(true, std::memory_order_release);
+        if (thread == 0) addDone(false);
       }
-      chunk_done_[chunk].store(true, std::memory_order_release);
-    };
-    for (int chunk; (chunk = next.fetch_add(1)) < chunks;) {
-      if (thread == 0) {
-        evaluateChunk(chunk);
-        addDone(false);
-        continue;
-      }
-      try {
-        evaluateChunk(chunk);
-      } catch (...) {
-        helper_failed = true;
-        throw;
-      }
+    } catch (...) {
+      failed = true;
+      throw;
     }
     if (thread == 0) addDone(true);
   });

@@ -353,7 +353,7 @@ class Failing : public Stateful {
 TEST(NlpAssembly, AFunctionsFailureOnTwoThreadsReachesTheCaller) {
   fesd::NlpAssembly nlp;
   const int first = nlp.addVariables(4, -kInf, kInf);
-  const int row = nlp.addRows(2, 0.0, 0.0);
+  const int row = nlp.addRows(3, 0.0, 0.0);
   const auto failing = std::make_shared<Failing>();
   const auto fine = std::make_shared<Stateful>(std::make_shared<int>(0));
   for (int t = 0; t < 200; ++t) {
@@ -363,11 +363,20 @@ TEST(NlpAssembly, AFunctionsFailureOnTwoThreadsReachesTheCaller) {
   nlp.finalize();
   nlp.setEvaluationThreads(fesd::NlpAssembly::Threads::kTwo);
   const std::vector<double> x{0.1, 0.2, 0.3, 0.4};
-  std::vector<double> g(2);
+  std::vector<double> g(3);
   for (int repeat = 0; repeat < 50; ++repeat) {
     EXPECT_THROW(nlp.constraints(x.data(), g.data()), std::runtime_error);
   }
   std::vector<double> jacobian(nlp.jacobianPattern().nonzeros());
   nlp.jacobian(x.data(), jacobian.data());  // Failing's Jacobian is Stateful's
   EXPECT_TRUE(std::isfinite(jacobian[0]));
+}
+
+TEST(NlpAssembly, AFunctionTermsRowsMustLieInTheNlp) {
+  fesd::NlpAssembly nlp;
+  const int first = nlp.addVariables(2, -kInf, kInf);
+  const int row = nlp.addRows(1, 0.0, 0.0);
+  nlp.addFunctionTerm(std::make_shared<Stateful>(std::make_shared<int>(0)), {first, first + 1}, -1,
+                      {{row, 1.0}});  // two outputs into one row
+  EXPECT_THROW(nlp.finalize(), std::invalid_argument);
 }

@@ -20,6 +20,8 @@ using SecondOrder = Eigen::AutoDiffScalar<Eigen::Matrix<FirstOrder, Eigen::Dynam
 /// Jacobians by forward mode, Hessians of w^T F by forward-over-forward mode: exact to rounding.
 /// The model-level blocks are dense (the functor is a black box, so no structural zero can be
 /// proven); the NLP built from them stays sparse because each block only touches its own point.
+/// The functor is shared between the threads that evaluate the NLP: it must keep no state
+/// between calls (SmoothFunction::threadCopy).
 template <class Functor>
 class AutoDiffFunction : public SmoothFunction {
  public:

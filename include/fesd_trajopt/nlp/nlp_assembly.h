@@ -188,6 +188,9 @@ class NlpAssembly : public RelaxedMpcc {
                               const TermAddition& add) const;
   void forEachTermOnTwoThreads(const double* x, const TermEvaluation& evaluate,
                                const TermAddition& add) const;
+  /// Makes the helper thread and the functions it evaluates; false (and nothing kept) if that
+  /// fails.
+  bool startHelper() const;
   /// The active set fixActiveSet would fix at x: per pair whether the left side is the zero
   /// one, and how ambiguous the choice is (min/max of the two sides; 0 when data decides).
   struct ActiveSetChoice {
