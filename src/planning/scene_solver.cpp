@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -318,6 +319,38 @@ void addHeld(const PairInterval& held, std::vector<PairInterval>& all) {
   if (std::find(all.begin(), all.end(), held) == all.end()) all.push_back(held);
 }
 
+}  // namespace
+
+void holdWhatThePlanBeforeHeld(const SceneOutcome& previous, const SceneTask& task,
+                               const OcpOptions& ocp, SceneOutcome& outcome) {
+  PlanStructure now;
+  now.intervals = task.num_intervals;
+  now.horizon = task.horizon;
+  now.stages = ocp.discretization.num_stages;
+  now.switch_detection = ocp.discretization.switch_detection;
+  now.interval_elements = intervalElements(task, ocp);
+  const int done = std::max(0, intervalsDone(previous.structure, now));
+  for (const PairInterval& held : previous.held_grazes) {
+    if (held.interval >= done) addHeld({held.pair, held.interval - done}, outcome.held_grazes);
+  }
+  const std::vector<int>& before = previous.structure.interval_elements;
+  if (static_cast<int>(before.size()) != done + now.intervals ||
+      !std::equal(now.interval_elements.begin(), now.interval_elements.end(),
+                  before.begin() + done)) {
+    return;
+  }
+  const int elements_done = std::accumulate(before.begin(), before.begin() + done, 0);
+  for (Graze point : previous.guard_points) {
+    if (point.interval < done) continue;
+    point.interval -= done;
+    point.element -= elements_done;
+    point.time -= done * task.horizon / task.num_intervals;
+    outcome.guard_points.push_back(point);
+  }
+}
+
+namespace {
+
 /// Holds the grazes: a pair and interval not held yet along its elements, and each graze's
 /// deepest point exactly (`points`: a held graze that still cuts in between the guards); false
 /// when there is none.
@@ -487,13 +520,7 @@ SceneOutcome solveSceneTask(const SceneTask& task, const TaskLimits& limits,
     chooseFirstPairs(aimed, candidates, first_guess, options, outcome);
   }
   if (options.previous != nullptr) {
-    // A replan holds what the last plan held, so that its NLP can be the same.
-    for (const PairInterval& held : options.previous->held_grazes) {
-      addHeld(held, outcome.held_grazes);
-    }
-    if (options.previous->structure.interval_elements == intervalElements(task, options.ocp)) {
-      outcome.guard_points = options.previous->guard_points;
-    }
+    holdWhatThePlanBeforeHeld(*options.previous, task, options.ocp, outcome);
   }
   std::string rounds_note;
   bool pairs_added = false;  // the round before added pairs or held bodies (a lazy round follows)

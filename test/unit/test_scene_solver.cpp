@@ -472,3 +472,55 @@ TEST(SolveSceneTaskWithARobot, SmallestBoundaryGap) {
 }
 
 }  // namespace
+
+/// A replan holds the grazes the plan before held: the closed loop's, 3 intervals on and on the
+/// rest of that grid, in the intervals still to come, moved to its own intervals and elements;
+/// the node's, on the same grid, as they were.
+TEST(HoldWhatThePlanBeforeHeld, AReplanThatStartsLaterHoldsTheRestMovedToItsIntervals) {
+  const fesd::ContactPair a{0, fesd::ContactPair::Kind::kBody, 1};
+  const fesd::ContactPair b{2, fesd::ContactPair::Kind::kBody, 1};
+  fesd::SceneOutcome previous;
+  previous.structure.intervals = 6;
+  previous.structure.horizon = 3.0;
+  previous.structure.stages = 2;
+  previous.structure.interval_elements = {2, 2, 3, 2, 2, 2};
+  previous.held_grazes = {{a, 1}, {a, 4}, {b, 5}};
+  fesd::Graze early, late;
+  early.pair = late.pair = a;
+  early.interval = 1;
+  early.element = 3;
+  late.interval = 4;
+  late.element = 10;  // the second of interval 4 (9 elements before it)
+  late.fraction = 0.3;
+  late.time = 2.2;
+  previous.guard_points = {early, late};
+  fesd::SceneTask task = fesd_test::pushingTask();
+  task.num_intervals = 3;
+  task.horizon = 1.5;
+  fesd::OcpOptions ocp;
+  ocp.discretization.num_stages = 2;
+  ocp.discretization.interval_elements = {2, 2, 2};
+  fesd::SceneOutcome replan;
+  fesd::holdWhatThePlanBeforeHeld(previous, task, ocp, replan);
+  EXPECT_EQ(replan.held_grazes, (std::vector<fesd::PairInterval>{{a, 1}, {b, 2}}));
+  ASSERT_EQ(replan.guard_points.size(), 1u);
+  EXPECT_EQ(replan.guard_points[0].interval, 1);
+  EXPECT_EQ(replan.guard_points[0].element, 3);
+  EXPECT_DOUBLE_EQ(replan.guard_points[0].fraction, 0.3);
+  EXPECT_NEAR(replan.guard_points[0].time, 0.7, 1e-12);
+  // Finer than the rest of that grid: the grazes held, their points (on other elements) not.
+  ocp.discretization.interval_elements = {3, 3, 3};
+  fesd::SceneOutcome finer;
+  fesd::holdWhatThePlanBeforeHeld(previous, task, ocp, finer);
+  EXPECT_EQ(finer.held_grazes, (std::vector<fesd::PairInterval>{{a, 1}, {b, 2}}));
+  EXPECT_TRUE(finer.guard_points.empty());
+  // The node's replan of the same request: everything as it was.
+  task.num_intervals = 6;
+  task.horizon = 3.0;
+  ocp.discretization.interval_elements = previous.structure.interval_elements;
+  fesd::SceneOutcome same;
+  fesd::holdWhatThePlanBeforeHeld(previous, task, ocp, same);
+  EXPECT_EQ(same.held_grazes, previous.held_grazes);
+  ASSERT_EQ(same.guard_points.size(), 2u);
+  EXPECT_EQ(same.guard_points[1].element, 10);
+}

@@ -159,6 +159,13 @@ struct SceneSolveOptions {
   const SolveMonitor* monitor = nullptr;  ///< progress and cancel of the solve; not owned
 };
 
+/// What a replan (`outcome`, of `task` on `ocp`'s grid) holds of the plan before, so that its
+/// NLP can be the same: the grazes that plan held and their deepest points. Where the replan
+/// starts later on the same grid (the closed loop's, `done` intervals on: intervalsDone), those
+/// in the intervals still to come, moved to the replan's intervals and elements.
+void holdWhatThePlanBeforeHeld(const SceneOutcome& previous, const SceneTask& task,
+                               const OcpOptions& ocp, SceneOutcome& outcome);
+
 /// The planning entry point of a scene task: validateTask, infeasibility, decidePairs, the first
 /// guess of the pairs in reach (the push plan, or for a robot its inverse kinematics:
 /// planRobotGuess; deterministic, so the same task gives the same plan on every machine), then
