@@ -4,8 +4,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <stdexcept>
 #include <thread>
 
@@ -109,7 +107,7 @@ void NlpAssembly::finalize() {
       }
     }
   }
-  size_t scratch = 0, spans = 0, span = 0;
+  size_t inputs = 0, spans = 0, span = 0;  // every term's spans one after another, the largest
   for (FunctionTerm& term : terms_) {
     const SmoothFunction& f = *term.function;
     for (const Target& target : term.targets) {
@@ -146,18 +144,13 @@ void NlpAssembly::finalize() {
         }
       }
     }
-    scratch =
-        std::max({scratch, static_cast<size_t>(f.inputSize()), static_cast<size_t>(f.outputSize()),
-                  static_cast<size_t>(jac.nonzeros()), static_cast<size_t>(hess.nonzeros())});
+    inputs = std::max(inputs, static_cast<size_t>(f.inputSize()));
     term.span = spans;
     spans += TermSpan::size(f);
     span = std::max(span, TermSpan::size(f));
   }
-  scratch_values_.resize(scratch);
-  scratch_jacobian_.resize(scratch);
-  scratch_inputs_.resize(scratch);
+  scratch_inputs_.resize(inputs);
   scratch_span_.resize(span);
-  spans_size_ = spans;
   finalized_ = true;
 }
 
@@ -193,9 +186,10 @@ double NlpAssembly::objective(const double* x) const {
   for (const FunctionTerm& term : terms_) {
     for (const Target& target : term.targets) {
       if (target.row != kObjective) continue;
-      term.function->evaluate(gather(term.inputs, x, scratch_inputs_), scratch_values_.data());
+      const TermSpan span(*term.function, scratch_span_.data());
+      term.function->evaluate(gather(term.inputs, x, scratch_inputs_), span.values);
       const double scale = term.scale_variable >= 0 ? x[term.scale_variable] : 1.0;
-      value += coefficient(target) * scale * scratch_values_[0];
+      value += coefficient(target) * scale * span.values[0];
     }
   }
   return value;
@@ -209,14 +203,15 @@ void NlpAssembly::objectiveGradient(const double* x, double* gradient) const {
       if (target.row != kObjective) continue;
       const double* z = gather(term.inputs, x, scratch_inputs_);
       const SparsityPattern& jac = term.function->jacobianPattern();
-      term.function->evaluateJacobian(z, scratch_jacobian_.data());
+      const TermSpan span(*term.function, scratch_span_.data());
+      term.function->evaluateJacobian(z, span.jacobian);
       const double scale = term.scale_variable >= 0 ? x[term.scale_variable] : 1.0;
       for (int e = 0; e < jac.nonzeros(); ++e) {
-        gradient[term.inputs[jac.cols[e]]] += coefficient(target) * scale * scratch_jacobian_[e];
+        gradient[term.inputs[jac.cols[e]]] += coefficient(target) * scale * span.jacobian[e];
       }
       if (term.scale_variable >= 0) {
-        term.function->evaluate(z, scratch_values_.data());
-        gradient[term.scale_variable] += coefficient(target) * scratch_values_[0];
+        term.function->evaluate(z, span.values);
+        gradient[term.scale_variable] += coefficient(target) * span.values[0];
       }
     }
   }
@@ -263,7 +258,7 @@ bool NlpAssembly::startHelper() const {
     auto done = std::make_unique<std::atomic<bool>[]>(chunks);
     auto helper = std::make_unique<HelperThread>();
     helper_inputs_.resize(scratch_inputs_.size());
-    term_spans_.resize(spans_size_);
+    term_spans_.resize(terms_.back().span + TermSpan::size(*terms_.back().function));
     helper_functions_ = std::move(functions);
     chunk_done_ = std::move(done);
     helper_ = std::move(helper);
@@ -275,12 +270,13 @@ bool NlpAssembly::startHelper() const {
 
 void NlpAssembly::forEachTermOnTwoThreads(const double* x, const TermEvaluation& evaluate,
                                           const TermAddition& add) const {
-  if (!helper_ && !startHelper()) {
+  if (terms_.empty() || (!helper_ && !startHelper())) {
     for (PassThreads& pass : pass_threads_) pass.mode = Threads::kOne;
     return forEachTermOnOneThread(x, evaluate, add);
   }
   const int count = static_cast<int>(terms_.size());
   const int chunks = (count + kTermsPerChunk - 1) / kTermsPerChunk;
+  const auto lastOf = [&](int chunk) { return std::min(count, (chunk + 1) * kTermsPerChunk); };
   for (int c = 0; c < chunks; ++c) chunk_done_[c].store(false, std::memory_order_relaxed);
   // A term's span has the original's layout on either thread (a copy's patterns are its).
   const auto span = [&](const FunctionTerm& term) {
@@ -296,9 +292,7 @@ void NlpAssembly::forEachTermOnTwoThreads(const double* x, const TermEvaluation&
         if (!wait || failed.load()) return;
         std::this_thread::yield();
       }
-      for (int t = added * kTermsPerChunk; t < std::min(count, (added + 1) * kTermsPerChunk); ++t) {
-        add(terms_[t], span(terms_[t]));
-      }
+      for (int t = added * kTermsPerChunk; t < lastOf(added); ++t) add(terms_[t], span(terms_[t]));
     }
   };
   // Each thread evaluates the chunks it claims; this one also adds the evaluated chunks in the
@@ -308,8 +302,7 @@ void NlpAssembly::forEachTermOnTwoThreads(const double* x, const TermEvaluation&
     std::vector<double>& inputs = thread == 0 ? scratch_inputs_ : helper_inputs_;
     try {
       for (int chunk; !failed.load() && (chunk = next.fetch_add(1)) < chunks;) {
-        for (int t = chunk * kTermsPerChunk; t < std::min(count, (chunk + 1) * kTermsPerChunk);
-             ++t) {
+        for (int t = chunk * kTermsPerChunk; t < lastOf(chunk); ++t) {
           const FunctionTerm& term = terms_[t];
           TermSpan evaluated = span(term);
           evaluate(term, thread == 0 ? *term.function : *helper_functions_[t],

@@ -324,12 +324,8 @@ void addHeld(const PairInterval& held, std::vector<PairInterval>& all) {
 
 void holdWhatThePlanBeforeHeld(const SceneOutcome& previous, const SceneTask& task,
                                const OcpOptions& ocp, SceneOutcome& outcome) {
-  PlanStructure now;
-  now.intervals = task.num_intervals;
-  now.horizon = task.horizon;
-  now.stages = ocp.discretization.num_stages;
-  now.switch_detection = ocp.discretization.switch_detection;
-  now.interval_elements = intervalElements(task, ocp);
+  const PlanStructure now =
+      planStructure({}, {}, task.horizon, task.num_intervals, ocp.discretization, 1.0);
   const int done = std::max(0, intervalsDone(previous.structure, now));
   for (const PairInterval& held : previous.held_grazes) {
     if (held.interval >= done) addHeld({held.pair, held.interval - done}, outcome.held_grazes);

@@ -242,9 +242,8 @@ class NlpAssembly : public RelaxedMpcc {
                         const std::vector<int>& left_out = {}) const;
   bool fixPairs(const std::vector<bool>& left_is_zero, const std::vector<bool>& biactive,
                 const double* x, const std::vector<int>& left_free = {});
-  // Scratch buffers sized to the largest function term (objective terms; the others' when
-  // evaluated on one thread).
-  mutable std::vector<double> scratch_values_, scratch_jacobian_, scratch_inputs_, scratch_span_;
+  // One function term's arguments and span, sized to the largest term (a thread's own).
+  mutable std::vector<double> scratch_inputs_, scratch_span_;
   static constexpr int kTermsPerChunk = 16;  ///< what a thread claims at a time
   static constexpr int kSlowEvaluations = 3;
   /// How a pass is evaluated; while measured, its slow evaluations in a row.
@@ -253,7 +252,6 @@ class NlpAssembly : public RelaxedMpcc {
     int slow = 0;
   };
   mutable std::array<PassThreads, 3> pass_threads_;  ///< per Pass
-  size_t spans_size_ = 0;
   /// For two threads: the helper thread, the function each term evaluates there (its copy,
   /// where it keeps state), the helper's arguments and every term's span. Made when first used.
   mutable std::unique_ptr<HelperThread> helper_;
