@@ -82,6 +82,19 @@ def disc_in_the_way_to_1e_2():
     return request
 
 
+def largest_allowed():
+    """27 passive discs near the actuators on the finest grid the limits allow (200 intervals x 6
+    elements x 4 stages) with a 30 s budget: the node's peak memory on its largest request."""
+    request = PlanRequest()
+    request.bodies = [passive_disc("rock_%d" % i, -13.0 + 2.6 * (i % 9), -12.0 - 3.0 * (i // 9),
+                                   0.8) for i in range(27)]
+    request.has_num_intervals, request.num_intervals = True, 200
+    request.has_num_elements, request.num_elements = True, 6
+    request.has_num_stages, request.num_stages = True, 4
+    request.has_wall_time_budget, request.wall_time_budget = True, 30.0
+    return request
+
+
 def object_target(x, y):
     request = PlanRequest()
     body = BodySpec(name="object", target_weight=1000.0)
@@ -98,7 +111,7 @@ def target_inside_a_disc():
 
 
 CASES = {"default": default_scene, "default_unverified": default_unverified,
-         "far_body": far_body,
+         "far_body": far_body, "largest_allowed": largest_allowed,
          "ten_discs_out_of_reach": ten_discs_out_of_reach, "ten_discs_in_reach": ten_discs_in_reach,
          "ten_discs_in_reach_all_pairs": ten_discs_in_reach_all_pairs,
          "disc_in_the_way": disc_in_the_way, "disc_in_the_way_to_1e-2": disc_in_the_way_to_1e_2,
