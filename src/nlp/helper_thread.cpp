@@ -19,10 +19,11 @@ HelperThread::HelperThread() : thread_([this] { serve(); }) {}
 
 HelperThread::~HelperThread() {
   {
+    // Notified under the lock, so that race checkers (helgrind) see the hand-over as one.
     std::lock_guard<std::mutex> lock(mutex_);
     stopping_ = true;
+    wake_.notify_one();
   }
-  wake_.notify_one();
   thread_.join();
 }
 
@@ -31,8 +32,8 @@ void HelperThread::runBeside(const std::function<void(int thread)>& job) {
     std::lock_guard<std::mutex> lock(mutex_);
     job_ = &job;
     failure_ = nullptr;
+    wake_.notify_one();
   }
-  wake_.notify_one();
   const std::exception_ptr own = run(job, 0);
   {
     // Withdrawn if the helper has not taken it; else it is busy on its last share.
