@@ -701,6 +701,11 @@ SimulationOptions verificationOptions(const DiscretizationOptions& configured,
   fine.homotopy.ipopt.max_iterations = kVerificationNlpIterations;
   fine.retry_homotopy.ipopt.max_iterations = kVerificationNlpIterations;
   fine.split_before_homotopy = true;
+  // A part that reaches the homotopy holds more switches than its elements place; a failed
+  // relaxation there rarely recovers, so each homotopy gives way to its fallback soon: the
+  // retry at the first failure, twice the elements and fixed steps after two in a row.
+  fine.homotopy.max_consecutive_failures = 1;
+  fine.retry_homotopy.max_consecutive_failures = 2;
   return fine;
 }
 

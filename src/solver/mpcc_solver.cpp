@@ -509,7 +509,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
   PrimalDualPoint best;
   double best_residual = std::numeric_limits<double>::infinity(), best_sigma = sigma,
          best_objective = 0.0;
-  int consecutive_infeasible = 0;
+  int consecutive_infeasible = 0, consecutive_failures = 0;
   // Active sets identified by the last converged relaxation and by the last early polishing.
   std::vector<bool> settled_candidate, polished_set;
   bool loosened = false;
@@ -592,8 +592,11 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     }
     consecutive_infeasible =
         report.status == SolveStatus::kInfeasible ? consecutive_infeasible + 1 : 0;
+    consecutive_failures = converged ? 0 : consecutive_failures + 1;
     if (!converged && (!options_.continue_after_failure ||
-                       consecutive_infeasible >= options_.max_consecutive_infeasible)) {
+                       consecutive_infeasible >= options_.max_consecutive_infeasible ||
+                       (options_.max_consecutive_failures > 0 &&
+                        consecutive_failures >= options_.max_consecutive_failures))) {
       break;
     }
     sigma *= options_.sigma_reduction;

@@ -1,5 +1,6 @@
-// Robustness of the homotopy loop: a relaxed NLP that fails, exceptions from the problem, the
-// wall-time budget, and repeatability (same input, bitwise the same output).
+// Robustness of the homotopy loop: a relaxed NLP that fails (once, or in a row up to a limit),
+// exceptions from the problem, the wall-time budget, and repeatability (same input, bitwise the
+// same output).
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -84,6 +85,31 @@ TEST(SolverRobustness, AFailedRelaxedNlpIsSkippedOrStopsTheHomotopyWithAClearSta
         << stopped.message;
     for (double v : stopped.solution) EXPECT_TRUE(std::isfinite(v));
   }
+}
+
+TEST(SolverRobustness, FailedRelaxedNlpsInARowStopTheHomotopyAtTheirLimit) {
+  // Faults at sigma = 1e-2 alone, or at 1e-2 and 1e-3: two failures in a row only in the second.
+  const auto solveWithFaults = [](double fault_from, int limit) {
+    FaultyCorner problem;
+    problem.nlp.fault_from = fault_from;
+    problem.nlp.fault_to = 2e-2;
+    fesd::HomotopyOptions options;
+    options.max_consecutive_failures = limit;
+    return problem.solve(options);
+  };
+  const fesd::MpccReport one_failure = solveWithFaults(5e-3, 2);
+  EXPECT_EQ(one_failure.status, fesd::SolveStatus::kSuccess) << one_failure.message;
+  EXPECT_EQ(one_failure.failedSteps(), 1);
+
+  const fesd::MpccReport two_failures = solveWithFaults(5e-4, 2);
+  EXPECT_EQ(two_failures.status, fesd::SolveStatus::kSolverError) << two_failures.message;
+  EXPECT_EQ(two_failures.history.size(), 4u);  // sigma = 1, 0.1, 0.01, 0.001
+  EXPECT_EQ(two_failures.failedSteps(), 2);
+
+  const fesd::MpccReport without_limit = solveWithFaults(5e-4, 0);
+  EXPECT_EQ(without_limit.status, fesd::SolveStatus::kSuccess) << without_limit.message;
+  EXPECT_EQ(without_limit.failedSteps(), 2);
+  EXPECT_LE(without_limit.complementarity_residual, 1e-9);
 }
 
 TEST(SolverRobustness, ProblemsThatFailEverywhereEndWithSolverErrorNotACrash) {

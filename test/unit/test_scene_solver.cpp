@@ -86,6 +86,10 @@ TEST(VerificationOptions, AreFinerThanTheSolveAndStopHopelessStepsEarly) {
   EXPECT_EQ(fine.homotopy.ipopt.max_iterations, fesd::kVerificationNlpIterations);
   EXPECT_EQ(fine.retry_homotopy.ipopt.max_iterations, fesd::kVerificationNlpIterations);
   EXPECT_LT(fesd::kVerificationNlpIterations, fesd::IpoptSettings{}.max_iterations);
+  // A failing homotopy gives way to its fallbacks: the retry at once, the retry itself to twice
+  // the elements and fixed steps after two failures in a row.
+  EXPECT_EQ(fine.homotopy.max_consecutive_failures, 1);
+  EXPECT_EQ(fine.retry_homotopy.max_consecutive_failures, 2);
   EXPECT_EQ(fesd::verificationOptions(configured, solve, -1.0).wall_time_budget, 0.0);
 }
 

@@ -121,6 +121,10 @@ struct HomotopyOptions {
   /// showcase re-simulation step), never after an infeasible one; on an infeasible simulation
   /// step every relaxation failed (14 in a row, 3-8 times the time of stopping, same status).
   int max_consecutive_infeasible = 3;
+  /// ... or after this many relaxed NLPs in a row that did not converge, whatever the reason (0:
+  /// no limit). For homotopies with a fallback behind them (a plan's verification: retry, twice
+  /// the elements, fixed steps), where a run of failures to the end costs more than the fallback.
+  int max_consecutive_failures = 0;
   /// A first relaxed NLP started cold that runs to Ipopt's iteration limit is too tight for its
   /// start: the homotopy starts again from that start, once, at sigma / kappa (an OCP's solve
   /// from its first guess: OcpSolver; a simulation step splits instead).
