@@ -524,7 +524,17 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     settings.tolerance =
         smooth ? options_.ipopt.tolerance
                : std::max(options_.ipopt.tolerance, options_.relaxed_tolerance_factor * sigma);
-    const NlpOutcome outcome = session_->solve(problem, point, settings);
+    // A cold first relaxation that may start over looser needs no more than its own cap.
+    const bool may_loosen = step == 0 && !loosened && !smooth &&
+                            options_.loosen_failed_first_relaxation && !start.has_multipliers &&
+                            !start.near_solution;
+    IpoptSession::SolveSettings step_settings = settings;
+    if (may_loosen) {
+      const int cap = step_settings.max_iterations > 0 ? step_settings.max_iterations
+                                                       : options_.ipopt.max_iterations;
+      step_settings.max_iterations = std::min(cap, options_.first_relaxation_iterations);
+    }
+    const NlpOutcome outcome = session_->solve(problem, point, step_settings);
     const double residual = problem.complementarityResidual(point.x.data());
     record(report,
            {sigma, outcome.iterations, residual, outcome.objective,
@@ -581,9 +591,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     }
     report.status = converged ? SolveStatus::kComplementarityNotMet : failureStatus(outcome.status);
     if (interrupted(report.status)) break;
-    if (step == 0 && !loosened && !smooth && options_.loosen_failed_first_relaxation &&
-        outcome.status == Ipopt::Maximum_Iterations_Exceeded && !start.has_multipliers &&
-        !start.near_solution) {
+    if (may_loosen && outcome.status == Ipopt::Maximum_Iterations_Exceeded) {
       loosened = true;
       point = start;
       sigma /= options_.sigma_reduction;

@@ -260,6 +260,27 @@ TEST(MpccSolver, AFirstRelaxationAtItsIterationLimitStartsOverOnceLooser) {
   EXPECT_EQ(loosened.history[1].iterations, plain.history[0].iterations);
 }
 
+TEST(MpccSolver, AFirstRelaxationThatMayStartOverStopsAtItsOwnCap) {
+  fesd::HomotopyOptions options;
+  options.sigma_initial = 1e-2;
+  options.first_relaxation_iterations = 1;
+  CornerMpcc problem, loosening;
+  const fesd::MpccReport plain = problem.solve(options);  // no start over: no cap either
+  ASSERT_EQ(plain.status, fesd::SolveStatus::kSuccess) << plain.message;
+  EXPECT_GT(plain.history[0].iterations, 1);
+  EXPECT_TRUE(plain.history[0].converged);
+  options.loosen_failed_first_relaxation = true;
+  const fesd::MpccReport report = loosening.solve(options);
+  ASSERT_EQ(report.status, fesd::SolveStatus::kSuccess) << report.message;
+  ASSERT_GE(report.history.size(), 3u);
+  EXPECT_EQ(report.history[0].iterations, 1);
+  EXPECT_EQ(report.history[0].ipopt_status, "maximum_iterations_exceeded");
+  // The loosened start and everything after it have Ipopt's own cap.
+  EXPECT_DOUBLE_EQ(report.history[1].sigma, 1e-1);
+  EXPECT_TRUE(report.history[1].converged);
+  EXPECT_NEAR(report.solution[loosening.x], 1.0, 1e-6);
+}
+
 TEST(MpccSolver, APreviousActiveSetsPolishStopsAtItsOwnIterationCap) {
   CutCorner corner(1e-4);
   ASSERT_EQ(corner.solution.status, fesd::SolveStatus::kSuccess) << corner.solution.message;

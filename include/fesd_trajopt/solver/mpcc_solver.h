@@ -129,6 +129,11 @@ struct HomotopyOptions {
   /// start: the homotopy starts again from that start, once, at sigma / kappa (an OCP's solve
   /// from its first guess: OcpSolver; a simulation step splits instead).
   bool loosen_failed_first_relaxation = false;
+  /// ... and that first relaxation stops after this many Ipopt iterations (the others at
+  /// ipopt.max_iterations): of about 100 planning scenes, first relaxations converged within 173
+  /// or ran to Ipopt's 500 (cluttered seeds 19, 106, 110), and those start over the same either
+  /// way.
+  int first_relaxation_iterations = 200;
   double wall_time_budget = std::numeric_limits<double>::infinity();  ///< seconds, per solve
   /// After the homotopy converges, fix the identified active set and solve the resulting smooth
   /// NLP once more (RelaxedMpcc::fixActiveSet): complementarity then holds exactly instead of
