@@ -1,6 +1,6 @@
 // homotopy-failures: does the homotopy do better continuing after a relaxed NLP that Ipopt did
-// not solve (HomotopyOptions::continue_after_failure), or stopping there? Runs simulations and
-// OCPs with both settings; CSV, one line per run.
+// not solve (HomotopyOptions::max_consecutive_failures 0), or stopping there (1)? Runs simulations
+// and OCPs with both settings; CSV, one line per run.
 #include <algorithm>
 #include <cstdio>
 #include <string>
@@ -43,8 +43,8 @@ void simulateWith(const std::string& problem, std::shared_ptr<const fesd::Dynami
     fesd::SimulationOptions options;
     options.discretization.num_stages = stages;
     options.discretization.num_elements = elements;
-    options.homotopy.continue_after_failure = continuing;
-    options.retry_homotopy.continue_after_failure = continuing;
+    options.homotopy.max_consecutive_failures = continuing ? 0 : 1;
+    options.retry_homotopy.max_consecutive_failures = continuing ? 0 : 1;
     fesd::FesdIntegrator integrator(model, options);
     const fesd::SimulationResult result = integrator.simulate(x0, horizon, steps, controls);
     Failures failures;
@@ -64,7 +64,7 @@ int homotopyFailures(const Arguments& args) {
   const std::vector<int> intervals = args.integers("intervals", {10, 20, 30});
   args.rejectUnused();
   std::printf(
-      "problem,grid,continue_after_failure,status,failed_nlps,longest_failed_run,iterations,"
+      "problem,grid,continuing,status,failed_nlps,longest_failed_run,iterations,"
       "wall_s,error\n");
   namespace example = fesd::circle_example;
   for (int s : stages) {
@@ -101,7 +101,7 @@ int homotopyFailures(const Arguments& args) {
       for (bool continuing : {true, false}) {
         fesd::OcpOptions options;
         options.discretization.num_elements = elements;
-        options.homotopy.continue_after_failure = continuing;
+        options.homotopy.max_consecutive_failures = continuing ? 0 : 1;
         fesd::OcpSolver solver(fesd::manipulation_example::ocp(n), options);
         const fesd::OcpSolution solution = solver.solve();
         Failures failures;

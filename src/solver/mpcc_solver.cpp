@@ -601,8 +601,7 @@ MpccReport MpccSolver::run(RelaxedMpcc& problem, PrimalDualPoint point, double s
     consecutive_infeasible =
         report.status == SolveStatus::kInfeasible ? consecutive_infeasible + 1 : 0;
     consecutive_failures = converged ? 0 : consecutive_failures + 1;
-    if (!converged && (!options_.continue_after_failure ||
-                       consecutive_infeasible >= options_.max_consecutive_infeasible ||
+    if (!converged && (consecutive_infeasible >= options_.max_consecutive_infeasible ||
                        (options_.max_consecutive_failures > 0 &&
                         consecutive_failures >= options_.max_consecutive_failures))) {
       break;

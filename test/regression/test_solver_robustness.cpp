@@ -77,7 +77,7 @@ TEST(SolverRobustness, AFailedRelaxedNlpIsSkippedOrStopsTheHomotopyWithAClearSta
     stopping.nlp.fault_from = 5e-3;
     stopping.nlp.fault_to = 2e-2;
     fesd::HomotopyOptions options;
-    options.continue_after_failure = false;
+    options.max_consecutive_failures = 1;
     const fesd::MpccReport stopped = stopping.solve(options);
     EXPECT_EQ(stopped.status, fesd::SolveStatus::kSolverError) << stopped.message;
     EXPECT_EQ(stopped.history.size(), 3u);  // sigma = 1, 0.1, 0.01

@@ -422,7 +422,7 @@ TEST(MpccSolver, ReportsInfeasibility) {
 TEST(MpccSolver, ReportsTheIterationLimit) {
   fesd::HomotopyOptions options;
   options.ipopt.max_iterations = 1;
-  options.continue_after_failure = false;
+  options.max_consecutive_failures = 1;
   const fesd::MpccReport report = CornerMpcc().solve(options);
   EXPECT_EQ(report.status, fesd::SolveStatus::kMaxIterations) << report.message;
 }

@@ -113,18 +113,17 @@ struct HomotopyOptions {
   double objective_scaling = 0.0;
   double objective_scale_target = 1e3;
   /// A relaxed NLP that ends without converging does not abort the homotopy: the next, tighter
-  /// one starts from its iterate (as the reference implementation does).
-  bool continue_after_failure = true;
-  /// ... except after this many relaxed NLPs in a row that Ipopt found locally infeasible.
+  /// one starts from its iterate (as the reference implementation does), until this many in a
+  /// row have failed (0: no limit; 1: the first failure ends the homotopy). A limit is for
+  /// homotopies with a fallback behind them (a plan's verification: retry, twice the elements,
+  /// fixed steps), where a run of failures to the end costs more than the fallback.
+  int max_consecutive_failures = 0;
+  /// ... and after this many relaxed NLPs in a row that Ipopt found locally infeasible.
   /// Measured (bench homotopy-failures and single runs): homotopies recovered after runs of up
   /// to 7 other failures (iteration limit on the aligned-chain OCP, restoration failures in a
   /// showcase re-simulation step), never after an infeasible one; on an infeasible simulation
   /// step every relaxation failed (14 in a row, 3-8 times the time of stopping, same status).
   int max_consecutive_infeasible = 3;
-  /// ... or after this many relaxed NLPs in a row that did not converge, whatever the reason (0:
-  /// no limit). For homotopies with a fallback behind them (a plan's verification: retry, twice
-  /// the elements, fixed steps), where a run of failures to the end costs more than the fallback.
-  int max_consecutive_failures = 0;
   /// A first relaxed NLP started cold that runs to Ipopt's iteration limit is too tight for its
   /// start: the homotopy starts again from that start, once, at sigma / kappa (an OCP's solve
   /// from its first guess: OcpSolver; a simulation step splits instead).
